@@ -1,0 +1,33 @@
+#pragma once
+// The two check macros of the house: KERF_CHECK is always on (input, library
+// return codes) and throws kerf::Error; KERF_DCHECK guards invariants in debug builds.
+#include <cassert>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+namespace kerf {
+
+/// Every error kerf reports to a user; the message says where and why.
+class Error : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+namespace detail {
+template <class... Parts>
+std::string concat(const Parts&... parts) {
+  std::ostringstream out;
+  (out << ... << parts);
+  return out.str();
+}
+}  // namespace detail
+
+}  // namespace kerf
+
+#define KERF_CHECK(condition, ...)                                  \
+  do {                                                              \
+    if (!(condition)) throw ::kerf::Error(::kerf::detail::concat(__VA_ARGS__)); \
+  } while (0)
+
+#define KERF_DCHECK(condition) assert(condition)

@@ -1,0 +1,26 @@
+#pragma once
+// What a run built and how long each phase took: filled by every layer,
+// written to summary.json, so a test can check that a scene got only what it needs.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "core/timer.h"
+
+namespace kerf {
+
+struct RunReport {
+  PhaseTimes phases;                 // setup, assembly, factorize, solve, cut_update, output
+  std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
+  std::vector<double> step_seconds;  // wall time of each time step (or load step)
+  std::vector<std::string> warnings;
+
+  void add_stage(const std::string& stage) {
+    if (std::find(stages.begin(), stages.end(), stage) == stages.end()) stages.push_back(stage);
+  }
+  bool has_stage(const std::string& stage) const {
+    return std::find(stages.begin(), stages.end(), stage) != stages.end();
+  }
+};
+
+}  // namespace kerf

@@ -1,0 +1,43 @@
+#pragma once
+// Wall-clock phase timing: a ScopedTimer adds its lifetime to a named phase.
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace kerf {
+
+/// Accumulated seconds per phase (setup, assembly, factorize, solve, cut_update, output).
+class PhaseTimes {
+ public:
+  void add(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
+  double seconds(const std::string& phase) const {
+    auto it = seconds_.find(phase);
+    return it == seconds_.end() ? 0.0 : it->second;
+  }
+  const std::map<std::string, double>& all() const { return seconds_; }
+
+ private:
+  std::map<std::string, double> seconds_;
+};
+
+inline double now_seconds() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+class ScopedTimer {
+ public:
+  ScopedTimer(PhaseTimes& times, std::string phase)
+      : times_(times), phase_(std::move(phase)), start_(now_seconds()) {}
+  ~ScopedTimer() { times_.add(phase_, now_seconds() - start_); }
+  ScopedTimer(const ScopedTimer&) = delete;
+  ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+ private:
+  PhaseTimes& times_;
+  std::string phase_;
+  double start_;
+};
+
+}  // namespace kerf

@@ -1,0 +1,92 @@
+#pragma once
+// What a solver needs of a discretized body, whatever the method (fem, efg,
+// nodal). Degrees of freedom are node-major: dof = dofs_per_node * node + component.
+// Units: displacement m, force N, mass kg, time s.
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+#include "problem/scene.h"
+
+namespace kerf {
+
+/// Receives one dense block of a global matrix: `values` is n x n row-major for
+/// n = dofs.size(). May be called from several threads at once: it must be safe.
+using BlockSink = std::function<void(std::span<const Index> dofs, std::span<const double> values)>;
+
+/// Called once per block that assembly will ever write: the sparsity pattern.
+using CouplingVisitor = std::function<void(std::span<const Index> dofs)>;
+
+struct DirichletDof {
+  Index dof;
+  double value;  // m
+};
+
+/// The displacement at a point as weights on nodal values: u(x) = sum_k w_k u_{node_k}.
+struct PointInterpolation {
+  std::vector<Index> nodes;
+  std::vector<double> weights;
+};
+
+/// A field written to ParaView: per point or per cell, `components` values each.
+struct OutputField {
+  std::string name;
+  int components = 1;
+  std::vector<double> values;
+};
+
+/// The body as ParaView sees it at one instant: reference points, cells with
+/// VTK cell types, and fields. Points are always 3D (z = 0 in 2D).
+struct BodySnapshot {
+  std::vector<Vec3> points;
+  std::vector<Index> connectivity;
+  std::vector<Index> offsets;          // end of each cell in connectivity
+  std::vector<std::uint8_t> cell_types;  // VTK cell type ids
+  std::vector<OutputField> point_fields;
+  std::vector<OutputField> cell_fields;
+};
+
+class DiscreteBody {
+ public:
+  virtual ~DiscreteBody() = default;
+
+  virtual int dofs_per_node() const = 0;
+  virtual Index node_count() const = 0;
+  Index dof_count() const { return dofs_per_node() * node_count(); }
+
+  virtual void visit_couplings(const CouplingVisitor& visit) const = 0;
+  /// f_int(u) (N), dof_count entries.
+  virtual void internal_force(const Vector& u, Vector& f) const = 0;
+  /// K(u) = d f_int / du into `sink`; also f_int(u) into *f when f is given.
+  virtual void tangent(const Vector& u, const BlockSink& sink, Vector* f) const = 0;
+  virtual double strain_energy(const Vector& u) const = 0;
+  /// True when f_int is linear in u: the stiffness never changes.
+  virtual bool is_linear() const = 0;
+
+  /// Diagonal mass (kg per dof).
+  virtual Vector lumped_mass() const = 0;
+  virtual void consistent_mass(const BlockSink& sink) const = 0;
+
+  /// f_ext(t) (N): body forces and boundary loads.
+  virtual void external_force(double t, Vector& f) const = 0;
+  /// The constrained dofs and their prescribed values at time t, sorted by dof.
+  virtual std::vector<DirichletDof> dirichlet(double t) const = 0;
+
+  /// Largest stable central-difference step with the lumped mass (s), from
+  /// element (or node) frequency bounds at the undeformed state.
+  virtual double critical_time_step() const = 0;
+
+  /// The nodes a selection takes; throws (naming the scene line) when it takes none.
+  virtual std::vector<Index> select_nodes(const Selection& selection) const = 0;
+  /// How to evaluate u at x, or nullopt when x lies outside the body.
+  virtual std::optional<PointInterpolation> interpolation_at(const Vec3& x) const = 0;
+  virtual void snapshot(const Vector& u, BodySnapshot& out) const = 0;
+
+  /// Counts for the summary: nodes, dofs, elements (cells or quadrature points), neighbours.
+  virtual Index element_count() const = 0;
+};
+
+}  // namespace kerf

@@ -1,0 +1,385 @@
+#include "discretization/fem/fem_body.h"
+
+#include <omp.h>
+
+#include <Eigen/Dense>
+#include <map>
+
+#include "core/check.h"
+#include "discretization/fem/simplex_quadrature.h"
+#include "discretization/fem/simplex_shape.h"
+#include "geometry/point_location.h"
+#include "problem/selection.h"
+
+namespace kerf {
+namespace {
+
+/// Calls body.template operator()<Dim, Npc>() for the mesh's cell type.
+template <class Body>
+void dispatch_cell(int dim, int order, Body&& body) {
+  if (dim == 3 && order == 1) body.template operator()<3, 4>();
+  else if (dim == 3) body.template operator()<3, 10>();
+  else if (order == 1) body.template operator()<2, 3>();
+  else body.template operator()<2, 6>();
+}
+
+std::uint8_t vtk_cell_type(int dim, int order) {
+  if (dim == 3) return order == 1 ? 10 : 24;  // VTK_TETRA, VTK_QUADRATIC_TETRA
+  return order == 1 ? 5 : 22;                 // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
+}
+
+/// Per-element results of one quadrature pass.
+template <int Dim, int Npc>
+struct ElementWork {
+  static constexpr int n = Dim * Npc;
+  Eigen::Matrix<double, n, 1> force;
+  Eigen::Matrix<double, n, n, Eigen::RowMajor> stiffness;
+  std::array<Index, n> dofs;
+  double energy = 0.0;
+};
+
+}  // namespace
+
+FemBody::FemBody(const Scene& scene, Mesh mesh)
+    : mesh_(std::move(mesh)),
+      facets_(boundary_facets(mesh_)),
+      on_boundary_(boundary_node_flags(mesh_, facets_)),
+      law_(scene.material),
+      density_(scene.material.density) {
+  const int dim = mesh_.dimension;
+  auto box = bounding_box(mesh_);
+  domain_size_ = (box[1] - box[0]).norm();
+  npc_ = mesh_.nodes_per_cell();
+  QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
+  nqp_ = static_cast<int>(rule.points.size());
+  const Index C = mesh_.cell_count();
+  grad_.resize(static_cast<std::size_t>(C) * nqp_ * npc_ * dim);
+  wdet_.resize(static_cast<std::size_t>(C) * nqp_);
+  std::vector<double> dN(npc_ * dim);
+  for (Index c = 0; c < C; ++c) {
+    auto nodes = mesh_.cell(c);
+    for (int q = 0; q < nqp_; ++q) {
+      simplex_shape_gradients(dim, mesh_.order, rule.points[q], dN.data());
+      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);  // dX/dxi
+      for (int a = 0; a < npc_; ++a)
+        for (int i = 0; i < dim; ++i)
+          for (int k = 0; k < dim; ++k) J(i, k) += mesh_.nodes[nodes[a]][i] * dN[a * dim + k];
+      double det = J.determinant();
+      KERF_CHECK(det > 0.0, "mesh cell ", c, " is inverted or degenerate (det J = ", det,
+                 " at quadrature point ", q, "); check the mesh");
+      Eigen::MatrixXd Jinv = J.inverse();
+      double* g = &grad_[((static_cast<std::size_t>(c) * nqp_) + q) * npc_ * dim];
+      for (int a = 0; a < npc_; ++a)
+        for (int l = 0; l < dim; ++l) {
+          double s = 0.0;
+          for (int k = 0; k < dim; ++k) s += dN[a * dim + k] * Jinv(k, l);
+          g[a * dim + l] = s;
+        }
+      wdet_[static_cast<std::size_t>(c) * nqp_ + q] = rule.weights[q] * det;
+    }
+  }
+  build_loads(scene);
+  build_constraints(scene);
+}
+
+template <int Dim, int Npc>
+void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const {
+  using Work = ElementWork<Dim, Npc>;
+  const Index C = mesh_.cell_count();
+  const int threads = omp_get_max_threads();
+  std::vector<Vector> thread_force(f ? threads : 0);
+  double total_energy = 0.0;
+#pragma omp parallel reduction(+ : total_energy)
+  {
+    Vector* local_force = nullptr;
+    if (f) {
+      thread_force[omp_get_thread_num()] = Vector::Zero(dof_count());
+      local_force = &thread_force[omp_get_thread_num()];
+    }
+    Work work;
+    Mat3 P;
+    Mat9 dPdF;
+#pragma omp for schedule(static)
+    for (Index c = 0; c < C; ++c) {
+      auto nodes = mesh_.cell(c);
+      Eigen::Matrix<double, Dim, Npc> U;
+      for (int a = 0; a < Npc; ++a)
+        for (int i = 0; i < Dim; ++i) {
+          work.dofs[Dim * a + i] = Dim * nodes[a] + i;
+          U(i, a) = u[Dim * nodes[a] + i];
+        }
+      work.force.setZero();
+      if (sink) work.stiffness.setZero();
+      for (int q = 0; q < nqp_; ++q) {
+        const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
+        Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
+        const double w = wdet_[point];
+        Mat3 F = Mat3::Identity();
+        F.template topLeftCorner<Dim, Dim>() += U * G;
+        if (sink)
+          law_.stress_and_tangent(F, P, dPdF);
+        else
+          P = law_.stress(F);
+        if (energy) total_energy += w * law_.energy(F);
+        Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
+        for (int a = 0; a < Npc; ++a)
+          for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
+        if (!sink) continue;
+        for (int b = 0; b < Npc; ++b)
+          for (int k = 0; k < Dim; ++k) {
+            // T(i, j) = sum_l dP(i,j)/dF(k,l) G(b,l)
+            Eigen::Matrix<double, Dim, Dim> T = Eigen::Matrix<double, Dim, Dim>::Zero();
+            for (int l = 0; l < Dim; ++l)
+              for (int j = 0; j < Dim; ++j)
+                for (int i = 0; i < Dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * G(b, l);
+            Eigen::Matrix<double, Dim, Npc> column = T * G.transpose();
+            for (int a = 0; a < Npc; ++a)
+              for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
+          }
+      }
+      if (local_force)
+        for (int r = 0; r < Work::n; ++r) (*local_force)[work.dofs[r]] += work.force[r];
+      if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
+    }
+  }
+  if (f) {
+    f->setZero(dof_count());
+    for (const Vector& part : thread_force) *f += part;
+  }
+  if (energy) *energy = total_energy;
+}
+
+void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  dispatch_cell(mesh_.dimension, mesh_.order,
+                [&]<int Dim, int Npc>() { element_loop<Dim, Npc>(u, sink, f, energy); });
+}
+
+void FemBody::internal_force(const Vector& u, Vector& f) const { loop(u, nullptr, &f, nullptr); }
+
+void FemBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  ElementSink forward = [&](Index, std::span<const Index> dofs, std::span<const double> values) {
+    sink(dofs, values);
+  };
+  loop(u, &forward, f, nullptr);
+}
+
+double FemBody::strain_energy(const Vector& u) const {
+  double e = 0.0;
+  loop(u, nullptr, nullptr, &e);
+  return e;
+}
+
+void FemBody::visit_couplings(const CouplingVisitor& visit) const {
+  const int dim = mesh_.dimension;
+  std::vector<Index> dofs(npc_ * dim);
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    auto nodes = mesh_.cell(c);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i) dofs[dim * a + i] = dim * nodes[a] + i;
+    visit(dofs);
+  }
+}
+
+Eigen::MatrixXd FemBody::element_scalar_mass(Index c) const {
+  const int dim = mesh_.dimension;
+  QuadratureRule rule = simplex_quadrature(dim, 2 * mesh_.order);
+  auto nodes = mesh_.cell(c);
+  Eigen::MatrixXd M = Eigen::MatrixXd::Zero(npc_, npc_);
+  std::vector<double> N(npc_), dN(npc_ * dim);
+  for (std::size_t q = 0; q < rule.points.size(); ++q) {
+    simplex_shape_values(dim, mesh_.order, rule.points[q], N.data());
+    simplex_shape_gradients(dim, mesh_.order, rule.points[q], dN.data());
+    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i)
+        for (int k = 0; k < dim; ++k) J(i, k) += mesh_.nodes[nodes[a]][i] * dN[a * dim + k];
+    Eigen::Map<Eigen::VectorXd> n(N.data(), npc_);
+    M += density_ * rule.weights[q] * J.determinant() * n * n.transpose();
+  }
+  return M;
+}
+
+Vector FemBody::lumped_mass() const {
+  // HRZ lumping: the consistent diagonal scaled to the element mass (positive
+  // for quadratic elements, where row sums give negative corner masses).
+  const int dim = mesh_.dimension;
+  Vector m = Vector::Zero(dof_count());
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    Eigen::MatrixXd M = element_scalar_mass(c);
+    double scale = M.sum() / M.diagonal().sum();
+    auto nodes = mesh_.cell(c);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i) m[dim * nodes[a] + i] += scale * M(a, a);
+  }
+  return m;
+}
+
+void FemBody::consistent_mass(const BlockSink& sink) const {
+  const int dim = mesh_.dimension, n = npc_ * dim;
+  std::vector<Index> dofs(n);
+  std::vector<double> block(n * n);
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    Eigen::MatrixXd M = element_scalar_mass(c);
+    auto nodes = mesh_.cell(c);
+    std::fill(block.begin(), block.end(), 0.0);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i) {
+        dofs[dim * a + i] = dim * nodes[a] + i;
+        for (int b = 0; b < npc_; ++b) block[(dim * a + i) * n + dim * b + i] = M(a, b);
+      }
+    sink(dofs, block);
+  }
+}
+
+void FemBody::external_force(double, Vector& f) const { f = load_; }
+
+void FemBody::build_loads(const Scene& scene) {
+  const int dim = mesh_.dimension, order = mesh_.order;
+  load_ = Vector::Zero(dof_count());
+  // Gravity: integral of rho g N_a over each cell.
+  if (scene.gravity.squaredNorm() > 0.0) {
+    for (Index c = 0; c < mesh_.cell_count(); ++c) {
+      Eigen::MatrixXd M = element_scalar_mass(c);  // row sums = integral of rho N_a
+      auto nodes = mesh_.cell(c);
+      for (int a = 0; a < npc_; ++a)
+        for (int i = 0; i < dim; ++i) load_[dim * nodes[a] + i] += M.row(a).sum() * scene.gravity[i];
+    }
+  }
+  // Tractions and pressures on the boundary facets whose nodes all lie in the selection.
+  const int fdim = dim - 1, nf = facets_.nodes_per_facet;
+  QuadratureRule rule = simplex_quadrature(fdim, order + 1);
+  std::vector<double> N(nf), dN(nf * std::max(fdim, 1));
+  for (const BoundaryCondition& bc : scene.boundary) {
+    if (bc.is_dirichlet()) continue;
+    std::vector<char> selected(mesh_.nodes.size(), 0);
+    for (Index n : select_nodes(bc.select)) selected[n] = 1;
+    Index loaded = 0;
+    for (Index fi = 0; fi < facets_.count(); ++fi) {
+      auto fn = facets_.facet(fi);
+      if (!std::all_of(fn.begin(), fn.end(), [&](Index n) { return selected[n]; })) continue;
+      ++loaded;
+      for (std::size_t q = 0; q < rule.points.size(); ++q) {
+        simplex_shape_values(fdim, order, rule.points[q], N.data());
+        simplex_shape_gradients(fdim, order, rule.points[q], dN.data());
+        Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+        for (int a = 0; a < nf; ++a) {
+          t1 += mesh_.nodes[fn[a]] * dN[a * fdim];
+          if (fdim == 2) t2 += mesh_.nodes[fn[a]] * dN[a * fdim + 1];
+        }
+        Vec3 area_normal = fdim == 2 ? Vec3(t1.cross(t2)) : Vec3(t1.y(), -t1.x(), 0.0);  // outward, |.| = dA/dxi
+        Vec3 traction = Vec3::Zero();
+        if (bc.traction) traction += *bc.traction * area_normal.norm();
+        if (bc.pressure) traction -= *bc.pressure * area_normal;
+        for (int a = 0; a < nf; ++a)
+          for (int i = 0; i < dim; ++i) load_[dim * fn[a] + i] += rule.weights[q] * N[a] * traction[i];
+      }
+    }
+    KERF_CHECK(loaded > 0, bc.select.where.describe(),
+               ": the selection holds boundary points but no whole boundary face, so the load has "
+               "nowhere to act; expected a plane or box covering at least one face");
+  }
+}
+
+void FemBody::build_constraints(const Scene& scene) {
+  const int dim = mesh_.dimension;
+  std::map<Index, std::pair<double, const BoundaryCondition*>> prescribed;
+  for (const BoundaryCondition& bc : scene.boundary) {
+    if (!bc.is_dirichlet()) continue;
+    for (Index n : select_nodes(bc.select))
+      for (int i = 0; i < dim; ++i) {
+        if (!bc.fixed[i] && !bc.displacement[i]) continue;
+        double value = bc.fixed[i] ? 0.0 : *bc.displacement[i];
+        auto [it, inserted] = prescribed.try_emplace(dim * n + i, value, &bc);
+        KERF_CHECK(inserted || it->second.first == value, bc.where.describe(), ": component ", "xyz"[i],
+                   " of the node at [", mesh_.nodes[n].transpose(), "] is prescribed ", value,
+                   " here and ", it->second.first, " by ", it->second.second->where.describe(),
+                   "; expected one value");
+      }
+  }
+  dirichlet_.clear();
+  for (const auto& [dof, entry] : prescribed) dirichlet_.push_back({dof, entry.first});
+}
+
+double FemBody::critical_time_step() const {
+  // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
+  // element's own lumped mass, so 2 / max(omega_e) is a safe step.
+  const int dim = mesh_.dimension, n = npc_ * dim;
+  Vector zero = Vector::Zero(dof_count());
+  double omega2_max = 0.0;
+  std::vector<Eigen::MatrixXd> blocks(mesh_.cell_count());
+  ElementSink collect = [&](Index c, std::span<const Index>, std::span<const double> values) {
+    blocks[c] = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+        values.data(), n, n);
+  };
+  loop(zero, &collect, nullptr, nullptr);
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    Eigen::MatrixXd M = element_scalar_mass(c);
+    Eigen::VectorXd lumped = M.diagonal() * (M.sum() / M.diagonal().sum());
+    Eigen::VectorXd s(n);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i) s[dim * a + i] = 1.0 / std::sqrt(lumped[a]);
+    Eigen::MatrixXd A = s.asDiagonal() * blocks[c] * s.asDiagonal();
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
+    omega2_max = std::max(omega2_max, eig.eigenvalues().maxCoeff());
+  }
+  return 2.0 / std::sqrt(omega2_max);
+}
+
+std::vector<Index> FemBody::select_nodes(const Selection& selection) const {
+  return select_points(selection, mesh_.nodes, on_boundary_, domain_size_);
+}
+
+std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const {
+  auto where = locate_point(mesh_, x, 1e-6 * domain_size_);
+  if (!where) return std::nullopt;
+  PointInterpolation p;
+  p.weights.resize(npc_);
+  simplex_shape_values(mesh_.dimension, mesh_.order, where->local, p.weights.data());
+  auto nodes = mesh_.cell(where->cell);
+  p.nodes.assign(nodes.begin(), nodes.end());
+  return p;
+}
+
+void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
+  const int dim = mesh_.dimension;
+  const Index C = mesh_.cell_count();
+  out = BodySnapshot{};
+  out.points = mesh_.nodes;
+  out.connectivity.reserve(mesh_.cells.size());
+  for (Index c = 0; c < C; ++c) {
+    auto n = mesh_.cell(c);
+    for (int a = 0; a < npc_; ++a) {
+      int local = a;
+      if (npc_ == 10 && (a == 8 || a == 9)) local = 17 - a;  // gmsh (2,3),(1,3) -> VTK (1,3),(2,3)
+      out.connectivity.push_back(n[local]);
+    }
+    out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
+    out.cell_types.push_back(vtk_cell_type(dim, mesh_.order));
+  }
+  OutputField displacement{"displacement", 3, std::vector<double>(3 * mesh_.nodes.size(), 0.0)};
+  for (Index n = 0; n < mesh_.node_count(); ++n)
+    for (int i = 0; i < dim; ++i) displacement.values[3 * n + i] = u[dim * n + i];
+  out.point_fields.push_back(std::move(displacement));
+
+  OutputField stress{"stress", 9, std::vector<double>(9 * C, 0.0)};
+  OutputField mises{"von_mises", 1, std::vector<double>(C, 0.0)};
+  for (Index c = 0; c < C; ++c) {
+    auto nodes = mesh_.cell(c);
+    Mat3 sigma = Mat3::Zero();
+    for (int q = 0; q < nqp_; ++q) {
+      const double* g = &grad_[((static_cast<std::size_t>(c) * nqp_) + q) * npc_ * dim];
+      Mat3 F = Mat3::Identity();
+      for (int a = 0; a < npc_; ++a)
+        for (int i = 0; i < dim; ++i)
+          for (int l = 0; l < dim; ++l) F(i, l) += u[dim * nodes[a] + i] * g[a * dim + l];
+      sigma += law_.cauchy_stress(F) / nqp_;
+    }
+    for (int k = 0; k < 9; ++k) stress.values[9 * c + k] = sigma(k / 3, k % 3);
+    mises.values[c] = von_mises(sigma);
+  }
+  out.cell_fields.push_back(std::move(stress));
+  out.cell_fields.push_back(std::move(mises));
+}
+
+}  // namespace kerf

@@ -1,0 +1,67 @@
+#pragma once
+// The finite-element discretization: tet4/tet10 (3D) or tri3/tri6 (2D plane
+// strain, per metre of thickness) on a gmsh mesh, isoparametric, total Lagrangian.
+// Shape-function gradients and quadrature weights are computed once.
+#include <vector>
+
+#include "core/run_report.h"
+#include "discretization/discrete_body.h"
+#include "geometry/boundary_facets.h"
+#include "geometry/mesh.h"
+#include "problem/material.h"
+
+namespace kerf {
+
+class FemBody final : public DiscreteBody {
+ public:
+  /// Builds loads and constraints from the scene; throws on a selection that takes nothing.
+  FemBody(const Scene& scene, Mesh mesh);
+
+  int dofs_per_node() const override { return mesh_.dimension; }
+  Index node_count() const override { return mesh_.node_count(); }
+  Index element_count() const override { return mesh_.cell_count(); }
+
+  void visit_couplings(const CouplingVisitor& visit) const override;
+  void internal_force(const Vector& u, Vector& f) const override;
+  void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
+  double strain_energy(const Vector& u) const override;
+  bool is_linear() const override { return law_.is_linear(); }
+
+  Vector lumped_mass() const override;
+  void consistent_mass(const BlockSink& sink) const override;
+  void external_force(double t, Vector& f) const override;
+  std::vector<DirichletDof> dirichlet(double t) const override { return dirichlet_; }
+  double critical_time_step() const override;
+
+  std::vector<Index> select_nodes(const Selection& selection) const override;
+  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override;
+  void snapshot(const Vector& u, BodySnapshot& out) const override;
+
+  const Mesh& mesh() const { return mesh_; }
+
+ private:
+  /// Receives each element's stiffness block with the element's index; thread-safe per element.
+  using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
+  template <int Dim, int Npc>
+  void element_loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
+  void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
+  /// Element mass matrix (npc x npc, scalar: multiply by the identity per component).
+  Eigen::MatrixXd element_scalar_mass(Index c) const;
+  void build_loads(const Scene& scene);
+  void build_constraints(const Scene& scene);
+
+  Mesh mesh_;
+  BoundaryFacets facets_;
+  std::vector<char> on_boundary_;
+  MaterialLaw law_;
+  double density_;
+  double domain_size_;
+  int npc_;                    // nodes per cell
+  int nqp_;                    // stiffness quadrature points per cell
+  std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
+  std::vector<double> wdet_;   // C * nqp: weight * det J (m^3, or m^2 in 2D)
+  Vector load_;                // dead loads: gravity, traction, pressure (N)
+  std::vector<DirichletDof> dirichlet_;
+};
+
+}  // namespace kerf

@@ -1,0 +1,60 @@
+#include "geometry/mesh.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+
+namespace kerf {
+namespace {
+constexpr std::array<std::array<int, 2>, 6> tet_edges{{{0, 1}, {1, 2}, {0, 2}, {0, 3}, {2, 3}, {1, 3}}};
+constexpr std::array<std::array<int, 2>, 3> tri_edges{{{0, 1}, {1, 2}, {0, 2}}};
+}  // namespace
+
+int Mesh::nodes_per_cell() const {
+  if (dimension == 3) return order == 1 ? 4 : 10;
+  return order == 1 ? 3 : 6;
+}
+
+std::span<const std::array<int, 2>> mid_edge_corners(int dimension) {
+  if (dimension == 3) return tet_edges;
+  return tri_edges;
+}
+
+double cell_measure(const Mesh& mesh, Index c) {
+  auto n = mesh.cell(c);
+  const Vec3& x0 = mesh.nodes[n[0]];
+  Vec3 a = mesh.nodes[n[1]] - x0, b = mesh.nodes[n[2]] - x0;
+  if (mesh.dimension == 2) return 0.5 * (a.x() * b.y() - a.y() * b.x());
+  return a.cross(b).dot(mesh.nodes[n[3]] - x0) / 6.0;
+}
+
+Index orient_cells(Mesh& mesh) {
+  Index flipped = 0;
+  const int npc = mesh.nodes_per_cell();
+  for (Index c = 0; c < mesh.cell_count(); ++c) {
+    if (cell_measure(mesh, c) >= 0.0) continue;
+    Index* n = mesh.cells.data() + static_cast<std::size_t>(c) * npc;
+    // Swap corners 1 and 2; the mid-edge nodes on edges touching them follow.
+    std::swap(n[1], n[2]);
+    if (mesh.order == 2) {
+      if (mesh.dimension == 3) {
+        std::swap(n[4], n[6]);  // (0,1) <-> (0,2)
+        std::swap(n[8], n[9]);  // (2,3) <-> (1,3)
+      } else {
+        std::swap(n[3], n[5]);  // (0,1) <-> (0,2)
+      }
+    }
+    ++flipped;
+  }
+  return flipped;
+}
+
+std::array<Vec3, 2> bounding_box(const Mesh& mesh) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
+  for (const Vec3& p : mesh.nodes) {
+    lo = lo.cwiseMin(p);
+    hi = hi.cwiseMax(p);
+  }
+  return {lo, hi};
+}
+
+}  // namespace kerf

@@ -1,0 +1,44 @@
+#pragma once
+// A simplex mesh as flat arrays. Node order within a cell is gmsh's:
+//   tet10 mid-edge nodes 4..9 on edges (0,1) (1,2) (0,2) (0,3) (2,3) (1,3);
+//   tri6  mid-edge nodes 3..5 on edges (0,1) (1,2) (0,2).
+// Cells are positively oriented (tets: positive volume; triangles: counter-clockwise).
+#include <array>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+
+namespace kerf {
+
+enum class CellShape { tetrahedron, triangle };
+
+struct Mesh {
+  int dimension = 3;       // 3: tetrahedra; 2: triangles in the x-y plane
+  int order = 1;           // 1: linear cells; 2: quadratic (mid-edge nodes)
+  std::vector<Vec3> nodes; // reference positions (m), N
+  std::vector<Index> cells;  // C * nodes_per_cell()
+
+  int corners_per_cell() const { return dimension == 3 ? 4 : 3; }
+  int nodes_per_cell() const;
+  Index cell_count() const { return static_cast<Index>(cells.size() / nodes_per_cell()); }
+  Index node_count() const { return static_cast<Index>(nodes.size()); }
+  std::span<const Index> cell(Index c) const {
+    return {cells.data() + static_cast<std::size_t>(c) * nodes_per_cell(),
+            static_cast<std::size_t>(nodes_per_cell())};
+  }
+};
+
+/// The local edge (pair of corners) that carries mid-edge node 4+k (tets) or 3+k (triangles).
+std::span<const std::array<int, 2>> mid_edge_corners(int dimension);
+
+/// Flips negatively oriented cells in place; returns how many were flipped.
+Index orient_cells(Mesh& mesh);
+
+/// Volume (3D) or area (2D) of the straight-sided cell c.
+double cell_measure(const Mesh& mesh, Index c);
+
+/// Smallest axis-aligned box holding every node.
+std::array<Vec3, 2> bounding_box(const Mesh& mesh);
+
+}  // namespace kerf

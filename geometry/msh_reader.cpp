@@ -1,0 +1,121 @@
+#include "geometry/msh_reader.h"
+
+#include <gmsh.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <fstream>
+
+#include "core/check.h"
+#include "geometry/gmsh_session.h"
+
+namespace kerf {
+namespace {
+
+// Child-to-parent message: a status byte, then either an error text or the mesh.
+enum : char { ok_status = 'M', error_status = 'E' };
+
+void write_all(int fd, const void* data, std::size_t bytes) {
+  const char* p = static_cast<const char*>(data);
+  while (bytes > 0) {
+    ssize_t n = ::write(fd, p, bytes);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) ::_exit(3);
+    p += n;
+    bytes -= static_cast<std::size_t>(n);
+  }
+}
+
+[[noreturn]] void child_read(const std::string& path, int dimension, int fd) {
+  std::string error;
+  Mesh mesh;
+  try {
+    ensure_gmsh_initialized();
+    gmsh::open(path);
+    extract_gmsh_mesh(dimension, path, mesh);
+  } catch (const std::exception& e) {
+    error = e.what();
+    if (error.empty()) error = "gmsh could not read it";
+  }
+  if (!error.empty()) {
+    char status = error_status;
+    write_all(fd, &status, 1);
+    write_all(fd, error.data(), error.size());
+    ::_exit(0);
+  }
+  char status = ok_status;
+  std::int64_t header[4] = {mesh.dimension, mesh.order, static_cast<std::int64_t>(mesh.nodes.size()),
+                            static_cast<std::int64_t>(mesh.cells.size())};
+  write_all(fd, &status, 1);
+  write_all(fd, header, sizeof header);
+  write_all(fd, mesh.nodes.data(), mesh.nodes.size() * sizeof(Vec3));
+  write_all(fd, mesh.cells.data(), mesh.cells.size() * sizeof(Index));
+  ::_exit(0);
+}
+
+/// Cheap checks before gmsh sees the file.
+void precheck(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  KERF_CHECK(in, path, ": cannot open the mesh file");
+  std::string first;
+  std::getline(in, first);
+  if (!first.empty() && first.back() == '\r') first.pop_back();
+  KERF_CHECK(first == "$MeshFormat", path, ":1: not a gmsh mesh: expected the first line to be "
+             "'$MeshFormat', found '", first.substr(0, 40), "'");
+}
+
+}  // namespace
+
+Mesh read_msh(const std::string& path, int dimension) {
+  precheck(path);
+  int fds[2];
+  KERF_CHECK(::pipe(fds) == 0, "cannot create a pipe to read ", path, ": ", std::strerror(errno));
+  std::fflush(nullptr);
+  pid_t pid = ::fork();
+  KERF_CHECK(pid >= 0, "cannot fork to read ", path, ": ", std::strerror(errno));
+  if (pid == 0) {
+    ::close(fds[0]);
+    child_read(path, dimension, fds[1]);
+  }
+  ::close(fds[1]);
+  std::string message;
+  char buffer[1 << 16];
+  for (;;) {
+    ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    message.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw Error(path + ": gmsh crashed reading this file (signal " + std::to_string(WTERMSIG(status)) + ", " +
+                strsignal(WTERMSIG(status)) + "): the mesh file is malformed");
+  KERF_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0 && !message.empty(), path,
+             ": the gmsh reader process failed (exit status ", WEXITSTATUS(status), ")");
+  if (message[0] == error_status) throw Error(path + ": gmsh could not read the mesh: " + message.substr(1));
+  std::int64_t header[4];
+  KERF_CHECK(message[0] == ok_status && message.size() >= 1 + sizeof header, path,
+             ": the gmsh reader process sent a truncated answer");
+  std::memcpy(header, message.data() + 1, sizeof header);
+  Mesh mesh;
+  mesh.dimension = static_cast<int>(header[0]);
+  mesh.order = static_cast<int>(header[1]);
+  std::size_t node_bytes = static_cast<std::size_t>(header[2]) * sizeof(Vec3);
+  std::size_t cell_bytes = static_cast<std::size_t>(header[3]) * sizeof(Index);
+  KERF_CHECK(message.size() == 1 + sizeof header + node_bytes + cell_bytes, path,
+             ": the gmsh reader process sent a truncated answer");
+  mesh.nodes.resize(static_cast<std::size_t>(header[2]));
+  mesh.cells.resize(static_cast<std::size_t>(header[3]));
+  const char* p = message.data() + 1 + sizeof header;
+  std::memcpy(static_cast<void*>(mesh.nodes.data()), p, node_bytes);
+  std::memcpy(mesh.cells.data(), p + node_bytes, cell_bytes);
+  return mesh;
+}
+
+}  // namespace kerf

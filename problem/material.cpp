@@ -1,0 +1,188 @@
+#include "problem/material.h"
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <limits>
+
+namespace kerf {
+namespace {
+
+Mat3 sym(const Mat3& A) { return 0.5 * (A + A.transpose()); }
+
+/// F = U diag(sigma) V^T with U, V proper rotations (an inverted F gets a negative sigma(2)).
+struct RotationSvd {
+  Mat3 U, V;
+  Vec3 sigma;
+  explicit RotationSvd(const Mat3& F) {
+    Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    U = svd.matrixU();
+    V = svd.matrixV();
+    sigma = svd.singularValues();
+    if (U.determinant() < 0.0) {
+      U.col(2) *= -1.0;
+      sigma(2) *= -1.0;
+    }
+    if (V.determinant() < 0.0) {
+      V.col(2) *= -1.0;
+      sigma(2) *= -1.0;
+    }
+  }
+  Mat3 rotation() const { return U * V.transpose(); }
+  /// Directional derivative of R = U V^T along dF (polar decomposition).
+  Mat3 rotation_derivative(const Mat3& dF) const {
+    Mat3 M = U.transpose() * dF * V;
+    Mat3 W = Mat3::Zero();
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        if (i == j) continue;
+        double s = sigma(i) + sigma(j);
+        if (std::abs(s) < 1e-12) s = s < 0 ? -1e-12 : 1e-12;
+        W(i, j) = (M(i, j) - M(j, i)) / s;
+      }
+    return U * W * V.transpose();
+  }
+};
+
+template <class Directional>
+Mat9 tangent_from_directions(Directional&& dP) {
+  Mat9 C;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      Mat3 dF = Mat3::Zero();
+      dF(k, l) = 1.0;
+      Mat3 d = dP(dF);
+      C.col(k + 3 * l) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data());
+    }
+  return C;
+}
+
+}  // namespace
+
+Lame Lame::from_young_poisson(double young, double poisson) {
+  Lame l;
+  l.mu = young / (2.0 * (1.0 + poisson));
+  l.lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
+  return l;
+}
+
+MaterialLaw::MaterialLaw(MaterialModel model, double young, double poisson)
+    : model_(model), lame_(Lame::from_young_poisson(young, poisson)) {}
+
+double MaterialLaw::energy(const Mat3& F) const {
+  const double lambda = lame_.lambda, mu = lame_.mu;
+  switch (model_) {
+    case MaterialModel::linear: {
+      Mat3 e = sym(F) - Mat3::Identity();
+      return mu * e.squaredNorm() + 0.5 * lambda * e.trace() * e.trace();
+    }
+    case MaterialModel::corotational: {
+      RotationSvd svd(F);
+      double t = svd.sigma.sum() - 3.0;
+      return mu * (F - svd.rotation()).squaredNorm() + 0.5 * lambda * t * t;
+    }
+    case MaterialModel::stvk: {
+      Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
+      return mu * E.squaredNorm() + 0.5 * lambda * E.trace() * E.trace();
+    }
+    case MaterialModel::neohookean: {
+      double J = F.determinant();
+      if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+      double logJ = std::log(J);
+      return 0.5 * mu * (F.squaredNorm() - 3.0) - mu * logJ + 0.5 * lambda * logJ * logJ;
+    }
+  }
+  return 0.0;
+}
+
+Mat3 MaterialLaw::stress(const Mat3& F) const {
+  const double lambda = lame_.lambda, mu = lame_.mu;
+  const Mat3 I = Mat3::Identity();
+  switch (model_) {
+    case MaterialModel::linear: {
+      Mat3 e = sym(F) - I;
+      return lambda * e.trace() * I + 2.0 * mu * e;
+    }
+    case MaterialModel::corotational: {
+      RotationSvd svd(F);
+      Mat3 R = svd.rotation();
+      return 2.0 * mu * (F - R) + lambda * (svd.sigma.sum() - 3.0) * R;
+    }
+    case MaterialModel::stvk: {
+      Mat3 E = 0.5 * (F.transpose() * F - I);
+      return F * (lambda * E.trace() * I + 2.0 * mu * E);
+    }
+    case MaterialModel::neohookean: {
+      double J = F.determinant();
+      if (!(J > 0.0)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+      Mat3 FinvT = F.inverse().transpose();
+      return mu * (F - FinvT) + lambda * std::log(J) * FinvT;
+    }
+  }
+  return Mat3::Zero();
+}
+
+void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
+  const double lambda = lame_.lambda, mu = lame_.mu;
+  const Mat3 I = Mat3::Identity();
+  switch (model_) {
+    case MaterialModel::linear: {
+      P = stress(F);
+      dPdF = tangent_from_directions([&](const Mat3& dF) {
+        Mat3 de = sym(dF);
+        return Mat3(lambda * de.trace() * I + 2.0 * mu * de);
+      });
+      return;
+    }
+    case MaterialModel::corotational: {
+      RotationSvd svd(F);
+      Mat3 R = svd.rotation();
+      double t = svd.sigma.sum() - 3.0;
+      P = 2.0 * mu * (F - R) + lambda * t * R;
+      dPdF = tangent_from_directions([&](const Mat3& dF) {
+        Mat3 dR = svd.rotation_derivative(dF);
+        return Mat3(2.0 * mu * (dF - dR) + lambda * (R.transpose() * dF).trace() * R + lambda * t * dR);
+      });
+      return;
+    }
+    case MaterialModel::stvk: {
+      Mat3 E = 0.5 * (F.transpose() * F - I);
+      Mat3 S = lambda * E.trace() * I + 2.0 * mu * E;
+      P = F * S;
+      dPdF = tangent_from_directions([&](const Mat3& dF) {
+        Mat3 dE = sym(F.transpose() * dF);
+        return Mat3(dF * S + F * (lambda * dE.trace() * I + 2.0 * mu * dE));
+      });
+      return;
+    }
+    case MaterialModel::neohookean: {
+      double J = F.determinant();
+      if (!(J > 0.0)) {
+        P = Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+        dPdF = Mat9::Constant(std::numeric_limits<double>::quiet_NaN());
+        return;
+      }
+      Mat3 Finv = F.inverse();
+      Mat3 FinvT = Finv.transpose();
+      double logJ = std::log(J);
+      P = mu * (F - FinvT) + lambda * logJ * FinvT;
+      dPdF = tangent_from_directions([&](const Mat3& dF) {
+        return Mat3(mu * dF + (mu - lambda * logJ) * FinvT * dF.transpose() * FinvT +
+                    lambda * (Finv * dF).trace() * FinvT);
+      });
+      return;
+    }
+  }
+}
+
+Mat3 MaterialLaw::cauchy_stress(const Mat3& F) const {
+  return stress(F) * F.transpose() / F.determinant();
+}
+
+double von_mises(const Mat3& s) {
+  double a = s(0, 0) - s(1, 1), b = s(1, 1) - s(2, 2), c = s(2, 2) - s(0, 0);
+  double shear = s(0, 1) * s(0, 1) + s(1, 2) * s(1, 2) + s(2, 0) * s(2, 0);
+  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * shear);
+}
+
+}  // namespace kerf
+

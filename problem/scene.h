@@ -1,0 +1,177 @@
+#pragma once
+// The parsed, validated scene: every key of SCENES.md with its default filled in.
+// Units are SI (m, kg, s, Pa, N). In 2D (plane strain) vectors keep z = 0.
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/types.h"
+
+namespace kerf {
+
+/// Where a value came from, for error messages: "scene.yaml:12:5 (material.poisson)".
+struct SourceLocation {
+  std::string file;
+  int line = 0;    // 1-based; 0 = not from the file (a default or --set)
+  int column = 0;  // 1-based
+  std::string key; // dotted path, e.g. "boundary.1.traction"
+  std::string describe() const;
+};
+
+enum class MaterialModel { linear, corotational, stvk, neohookean };
+enum class Method { fem, efg, nodal };
+enum class ElementType { tet4, tet10, tri3, tri6 };
+enum class NodePlacement { lattice, mesh };
+enum class MlsBasis { linear, quadratic };
+enum class WeightFunction { quartic };
+enum class EssentialMethod { penalty, nitsche };
+enum class Analysis { static_analysis, dynamic };
+enum class Integrator { implicit_euler, newmark, central_difference };
+enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
+enum class MassKind { lumped, consistent };
+enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
+enum class GridLookup { exact, interpolated };
+enum class FemCut { remesh, remove };
+enum class ProbeField { displacement, reaction, indentation, energy };
+
+struct Box {
+  Vec3 min = Vec3::Zero();
+  Vec3 max = Vec3::Zero();
+  bool contains(const Vec3& p, double tolerance) const;
+};
+
+struct Selection {
+  enum class Kind { plane, box, point };
+  Kind kind = Kind::plane;
+  int axis = 0;            // plane: 0, 1, 2 for x, y, z
+  double at = 0.0;         // plane: coordinate (m)
+  Box box;                 // box
+  Vec3 point = Vec3::Zero();  // point: the nearest node is taken
+  SourceLocation where;
+};
+
+struct BoundaryCondition {
+  Selection select;
+  std::array<bool, 3> fixed{false, false, false};                  // held at zero
+  std::array<std::optional<double>, 3> displacement;               // prescribed (m)
+  std::optional<Vec3> traction;                                    // Pa
+  std::optional<double> pressure;                                  // Pa, along the inward normal
+  bool is_dirichlet() const;
+  SourceLocation where;
+};
+
+struct Material {
+  MaterialModel model = MaterialModel::linear;
+  double young = 1.0e6;    // Pa
+  double poisson = 0.3;
+  double density = 1000.0; // kg/m^3
+  double damping_mass = 0.0;       // Rayleigh alpha (1/s)
+  double damping_stiffness = 0.0;  // Rayleigh beta (s)
+};
+
+struct RefineRegion {
+  Box box;
+  double size = 0.0;  // m
+};
+
+struct FemOptions {
+  ElementType element = ElementType::tet4;
+  double size = 0.0025;  // m
+};
+
+struct MeshlessOptions {
+  NodePlacement nodes = NodePlacement::lattice;
+  double spacing = 0.0025;  // m
+  double support = 2.2;     // multiple of spacing
+  MlsBasis basis = MlsBasis::linear;
+  WeightFunction weight = WeightFunction::quartic;
+  int quadrature_order = 2;
+  EssentialMethod essential = EssentialMethod::nitsche;
+  bool stabilization = true;
+};
+
+struct Discretization {
+  Method method = Method::fem;
+  FemOptions fem;
+  std::vector<RefineRegion> refine;
+  MeshlessOptions meshless;
+};
+
+struct ContactSphere {
+  Vec3 center = Vec3::Zero();
+  double radius = 0.0;
+  std::optional<Vec3> force;         // N
+  std::optional<Vec3> displacement;  // m
+  SourceLocation where;
+};
+
+struct Cut {
+  std::vector<Vec3> vertices;  // 3D strip vertices or 2D polyline vertices
+  bool is_strip = false;
+  std::vector<double> times;   // one per vertex (s)
+  Enrichment enrichment = Enrichment::grid;
+  double grid_spacing = 0.0005;  // m
+  GridLookup grid_lookup = GridLookup::exact;
+  FemCut fem = FemCut::remesh;
+  SourceLocation where;
+};
+
+struct NewtonOptions {
+  double tolerance = 1.0e-8;  // relative residual
+  int max_iterations = 25;
+  bool line_search = true;
+};
+
+struct SolveOptions {
+  Analysis analysis = Analysis::static_analysis;
+  Integrator integrator = Integrator::implicit_euler;
+  double dt = 0.001;       // s
+  double duration = 1.0;   // s
+  int load_steps = 1;      // static: load increments
+  NewtonOptions newton;
+  LinearSolverKind linear_solver = LinearSolverKind::cholmod;
+  std::string petsc = "-ksp_type cg -pc_type gamg";
+  MassKind mass = MassKind::consistent;  // implicit runs; explicit always lumps
+};
+
+struct Probe {
+  std::string name;
+  ProbeField field = ProbeField::displacement;
+  std::optional<Vec3> point;
+  std::optional<Selection> select;
+  std::optional<int> contact;
+  SourceLocation where;
+};
+
+struct OutputOptions {
+  std::string dir;       // resolved: absolute or relative to the working directory
+  int vtk_every = 0;     // 0 = no VTK output
+  std::vector<Probe> probes;
+};
+
+struct Scene {
+  std::string name = "scene";
+  std::string file;        // the scene file ("" when built in code)
+  std::string directory;   // its folder, for relative paths
+  int dimension = 3;
+  std::optional<Box> box;
+  std::string mesh_file;   // resolved path when domain.mesh is used
+  SourceLocation domain_where;
+  Material material;
+  Discretization discretization;
+  std::vector<BoundaryCondition> boundary;
+  Vec3 gravity = Vec3::Zero();
+  std::vector<ContactSphere> contact;
+  std::vector<Cut> cuts;
+  SolveOptions solve;
+  OutputOptions output;
+};
+
+const char* to_string(MaterialModel);
+const char* to_string(Method);
+const char* to_string(ElementType);
+const char* to_string(Integrator);
+const char* to_string(LinearSolverKind);
+
+}  // namespace kerf

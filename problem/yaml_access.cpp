@@ -1,0 +1,206 @@
+#include "problem/yaml_access.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/check.h"
+
+namespace kerf {
+namespace {
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string join_key(const std::string& parent, const std::string& child) {
+  return parent.empty() ? child : parent + "." + child;
+}
+
+}  // namespace
+
+std::string SourceLocation::describe() const {
+  std::ostringstream out;
+  if (line > 0)
+    out << file << ":" << line << ":" << column << ": key '" << key << "'";
+  else if (!file.empty())
+    out << file << ": key '" << key << "' (set on the command line)";
+  else
+    out << "key '" << key << "'";
+  return out.str();
+}
+
+YamlField::YamlField(YAML::Node node, std::string key, const std::string* file,
+                     const std::set<std::string>* overridden)
+    : node_(std::move(node)), key_(std::move(key)), file_(file), overridden_(overridden) {}
+
+SourceLocation YamlField::location() const {
+  SourceLocation where;
+  where.file = file_ ? *file_ : std::string();
+  where.key = key_;
+  bool from_command_line = false;
+  if (overridden_)
+    for (const auto& prefix : *overridden_)
+      if (key_ == prefix || key_.rfind(prefix + ".", 0) == 0) from_command_line = true;
+  if (node_ && !from_command_line) {
+    YAML::Mark mark = node_.Mark();
+    if (mark.line >= 0) {
+      where.line = mark.line + 1;
+      where.column = mark.column + 1;
+    }
+  }
+  return where;
+}
+
+bool YamlField::has(const std::string& child) const {
+  if (!node_ || !node_.IsMap()) return false;
+  YAML::Node value = node_[child];
+  return value && !value.IsNull();
+}
+
+YamlField YamlField::operator[](const std::string& child) const {
+  YAML::Node value = node_ && node_.IsMap() ? node_[child] : YAML::Node();
+  // Keep a located node for messages about a missing child: point at the parent.
+  return YamlField(value, join_key(key_, child), file_, overridden_);
+}
+
+YamlField YamlField::operator[](std::size_t index) const {
+  return YamlField(node_[index], join_key(key_, std::to_string(index)), file_, overridden_);
+}
+
+void YamlField::fail(const std::string& problem) const {
+  throw Error(location().describe() + ": " + problem);
+}
+
+std::string YamlField::value_text() const {
+  if (!node_ || node_.IsNull()) return "null";
+  if (node_.IsScalar()) return "'" + node_.Scalar() + "'";
+  YAML::Emitter out;
+  out << YAML::Flow << node_;
+  return out.c_str();
+}
+
+void YamlField::out_of_range(const std::string& expected) const {
+  fail("value " + value_text() + " is out of range; expected " + expected);
+}
+
+void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
+  if (!node_.IsMap()) fail("expected a map with keys, found " + value_text());
+  for (const auto& entry : node_) {
+    std::string name = entry.first.as<std::string>();
+    bool known = std::any_of(allowed.begin(), allowed.end(),
+                             [&](const char* a) { return name == a; });
+    if (known) continue;
+    std::string nearest;
+    std::size_t best = 3;
+    for (const char* a : allowed) {
+      std::size_t d = edit_distance(name, a);
+      if (d < best) best = d, nearest = a;
+    }
+    std::string list;
+    for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
+    YamlField child(entry.first, join_key(key_, name), file_, overridden_);
+    child.fail("unknown key '" + name + "'" +
+               (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") +
+               "; expected one of: " + list);
+  }
+}
+
+std::string YamlField::exactly_one_of(std::initializer_list<const char*> keys) const {
+  std::string found, list;
+  int count = 0;
+  for (const char* k : keys) {
+    list += (list.empty() ? "" : " | ") + std::string(k);
+    if (has(k)) ++count, found = k;
+  }
+  if (count != 1)
+    fail("expected exactly one of " + list + ", found " + std::to_string(count));
+  return found;
+}
+
+double YamlField::number() const {
+  if (!node_ || !node_.IsScalar()) fail("expected a number, found " + value_text());
+  double value = 0.0;
+  try {
+    value = node_.as<double>();
+  } catch (const YAML::Exception&) {
+    fail("expected a number, found " + value_text());
+  }
+  if (!std::isfinite(value)) fail("expected a finite number, found " + value_text());
+  return value;
+}
+
+int YamlField::integer() const {
+  if (!node_ || !node_.IsScalar()) fail("expected an integer, found " + value_text());
+  try {
+    return node_.as<int>();
+  } catch (const YAML::Exception&) {
+    fail("expected an integer, found " + value_text());
+  }
+}
+
+bool YamlField::boolean() const {
+  if (!node_ || !node_.IsScalar()) fail("expected true or false, found " + value_text());
+  try {
+    return node_.as<bool>();
+  } catch (const YAML::Exception&) {
+    fail("expected true or false, found " + value_text());
+  }
+}
+
+std::string YamlField::text() const {
+  if (!node_ || !node_.IsScalar()) fail("expected a string, found " + value_text());
+  return node_.Scalar();
+}
+
+std::vector<double> YamlField::numbers() const {
+  if (!node_ || !node_.IsSequence()) fail("expected a list of numbers, found " + value_text());
+  std::vector<double> values;
+  for (std::size_t i = 0; i < node_.size(); ++i) values.push_back((*this)[i].number());
+  return values;
+}
+
+Vec3 YamlField::vector(int dimension) const {
+  if (!node_ || !node_.IsSequence() || static_cast<int>(node_.size()) != dimension)
+    fail("expected a list of " + std::to_string(dimension) + " numbers (dimension " +
+         std::to_string(dimension) + "), found " + value_text());
+  Vec3 v = Vec3::Zero();
+  for (int i = 0; i < dimension; ++i) v[i] = (*this)[i].number();
+  return v;
+}
+
+std::array<std::optional<double>, 3> YamlField::optional_vector(int dimension) const {
+  if (!node_ || !node_.IsSequence() || static_cast<int>(node_.size()) != dimension)
+    fail("expected a list of " + std::to_string(dimension) +
+         " numbers or nulls (dimension " + std::to_string(dimension) + "), found " +
+         value_text());
+  std::array<std::optional<double>, 3> v;
+  for (int i = 0; i < dimension; ++i)
+    if (!(*this)[i].is_null() && (*this)[i].node().Scalar() != "~") v[i] = (*this)[i].number();
+  return v;
+}
+
+int YamlField::choice(std::initializer_list<const char*> choices) const {
+  std::string value = text();
+  int index = 0;
+  std::string list;
+  for (const char* c : choices) {
+    if (value == c) return index;
+    list += (list.empty() ? "" : " | ") + std::string(c);
+    ++index;
+  }
+  fail("value " + value_text() + " is not allowed; expected one of " + list);
+}
+
+}  // namespace kerf
