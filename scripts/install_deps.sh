@@ -3,7 +3,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
-  libeigen3-dev libsuitesparse-dev petsc-dev libcgal-dev
+  libeigen3-dev libsuitesparse-dev libopenblas0-openmp petsc-dev mpi-default-dev libcgal-dev
   libgmsh-dev gmsh libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libnanoflann-dev
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib

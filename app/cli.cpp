@@ -1,0 +1,93 @@
+#include "app/cli.h"
+
+#include <cstdio>
+#include <iostream>
+
+#include "app/run_scene.h"
+#include "core/check.h"
+#include "kerf/version.h"
+#include "problem/scene_json.h"
+#include "problem/scene_reader.h"
+
+namespace kerf {
+namespace {
+
+constexpr const char* usage =
+    "usage:\n"
+    "  kerf run SCENE.yaml [--set KEY=VALUE]... [--out DIR] [--quiet]\n"
+    "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene\n"
+    "  kerf study NAME [--quick] [--out DIR]\n"
+    "  kerf --version\n";
+
+struct Arguments {
+  std::string command, target, out;
+  std::vector<std::string> overrides;
+  bool quiet = false, quick = false;
+};
+
+Arguments parse(const std::vector<std::string>& args) {
+  Arguments a;
+  if (args.empty()) throw Error(std::string("no command given\n") + usage);
+  a.command = args[0];
+  for (std::size_t i = 1; i < args.size(); ++i) {
+    const std::string& s = args[i];
+    auto value = [&](const char* flag) {
+      KERF_CHECK(i + 1 < args.size(), flag, " needs a value\n", usage);
+      return args[++i];
+    };
+    if (s == "--set") a.overrides.push_back(value("--set"));
+    else if (s.rfind("--set=", 0) == 0) a.overrides.push_back(s.substr(6));
+    else if (s == "--out") a.out = value("--out");
+    else if (s == "--quiet") a.quiet = true;
+    else if (s == "--quick") a.quick = true;
+    else if (s.rfind("--", 0) == 0) throw Error("unknown option '" + s + "'\n" + usage);
+    else if (a.target.empty()) a.target = s;
+    else throw Error("unexpected argument '" + s + "'\n" + usage);
+  }
+  return a;
+}
+
+}  // namespace
+
+int run_command_line(const std::vector<std::string>& args) {
+  Arguments a;
+  Scene scene;
+  try {
+    a = parse(args);
+    if (a.command == "--version" || a.command == "version") {
+      std::cout << "kerf " << version << "\n";
+      return 0;
+    }
+    if (a.command == "--help" || a.command == "help") {
+      std::cout << usage;
+      return 0;
+    }
+    if (a.command == "study") {
+      throw Error("no study named '" + a.target +
+                  "': no studies are built yet (hertz, timing, cut, stability and pareto arrive with issue 5)");
+    }
+    KERF_CHECK(a.command == "run" || a.command == "check", "unknown command '", a.command, "'\n", usage);
+    KERF_CHECK(!a.target.empty(), a.command, " needs a scene file\n", usage);
+    scene = read_scene(a.target, a.overrides);
+    if (a.command == "check") {
+      std::cout << scene_to_json(scene).dump(2) << "\n";
+      return 0;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "kerf: error: " << e.what() << "\n";
+    return 2;
+  }
+  try {
+    RunOptions options;
+    options.out_dir = a.out;
+    options.quiet = a.quiet;
+    RunOutcome outcome = run_scene(scene, options);
+    if (!a.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "kerf: error: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace kerf

@@ -1,0 +1,120 @@
+#include "app/probe_set.h"
+
+#include "core/check.h"
+
+namespace kerf {
+
+ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : dim_(body.dofs_per_node()) {
+  for (const Probe& p : scene.output.probes) {
+    Resolved r{p, {}, {}};
+    switch (p.field) {
+      case ProbeField::displacement: {
+        auto interpolation = body.interpolation_at(*p.point);
+        KERF_CHECK(interpolation, p.where.describe(), ": probe '", p.name, "' point [", p.point->transpose(),
+                   "] lies outside the body; expected a point inside or on it");
+        r.interpolation = *interpolation;
+        break;
+      }
+      case ProbeField::reaction:
+        r.nodes = body.select_nodes(*p.select);
+        break;
+      case ProbeField::indentation:
+        throw Error(p.where.describe() + ": indentation probes need contact, which is not implemented yet");
+      case ProbeField::energy:
+        break;
+    }
+    probes_.push_back(std::move(r));
+  }
+}
+
+std::vector<std::string> ProbeSet::columns() const {
+  std::vector<std::string> out;
+  const char* axes = "xyz";
+  for (const Resolved& r : probes_) {
+    const std::string& n = r.probe.name;
+    switch (r.probe.field) {
+      case ProbeField::displacement:
+        for (int i = 0; i < dim_; ++i) out.push_back(n + "_u" + axes[i]);
+        break;
+      case ProbeField::reaction:
+        for (int i = 0; i < dim_; ++i) out.push_back(n + "_r" + axes[i]);
+        break;
+      case ProbeField::indentation:
+        out.push_back(n + "_indentation");
+        break;
+      case ProbeField::energy:
+        for (const char* e : {"_kinetic", "_strain", "_external_work", "_total"}) out.push_back(n + e);
+        break;
+    }
+  }
+  return out;
+}
+
+bool ProbeSet::needs_reaction() const {
+  for (const Resolved& r : probes_)
+    if (r.probe.field == ProbeField::reaction) return true;
+  return false;
+}
+
+bool ProbeSet::needs_energy() const {
+  for (const Resolved& r : probes_)
+    if (r.probe.field == ProbeField::energy) return true;
+  return false;
+}
+
+std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState& state, const Vector& reaction,
+                                           const EnergyState& energy) const {
+  std::vector<double> v;
+  switch (r.probe.field) {
+    case ProbeField::displacement:
+      v.assign(dim_, 0.0);
+      for (std::size_t k = 0; k < r.interpolation.nodes.size(); ++k)
+        for (int i = 0; i < dim_; ++i) v[i] += r.interpolation.weights[k] * state.u[dim_ * r.interpolation.nodes[k] + i];
+      break;
+    case ProbeField::reaction:
+      v.assign(dim_, 0.0);
+      for (Index n : r.nodes)
+        for (int i = 0; i < dim_; ++i) v[i] += reaction[dim_ * n + i];
+      break;
+    case ProbeField::indentation:
+      break;
+    case ProbeField::energy:
+      v = {energy.kinetic, energy.strain, energy.external_work, energy.total()};
+      break;
+  }
+  return v;
+}
+
+std::vector<double> ProbeSet::values(const SolverState& state, const Vector& reaction,
+                                     const EnergyState& energy) const {
+  std::vector<double> out;
+  for (const Resolved& r : probes_) {
+    auto v = probe_values(r, state, reaction, energy);
+    out.insert(out.end(), v.begin(), v.end());
+  }
+  return out;
+}
+
+nlohmann::json ProbeSet::final_values(const SolverState& state, const Vector& reaction,
+                                      const EnergyState& energy) const {
+  nlohmann::json out = nlohmann::json::object();
+  for (const Resolved& r : probes_) {
+    auto v = probe_values(r, state, reaction, energy);
+    switch (r.probe.field) {
+      case ProbeField::displacement:
+        out[r.probe.name] = {{"displacement", v}};
+        break;
+      case ProbeField::reaction:
+        out[r.probe.name] = {{"reaction", v}};
+        break;
+      case ProbeField::indentation:
+        break;
+      case ProbeField::energy:
+        out[r.probe.name] = {{"kinetic", v[0]}, {"strain", v[1]}, {"external_work", v[2]}, {"total", v[3]}};
+        break;
+    }
+  }
+  return out;
+}
+
+}  // namespace kerf

@@ -1,0 +1,45 @@
+#pragma once
+// The scene's probes resolved against a discretized body: what each one reads
+// from the solver state, as CSV columns and as the summary's final values.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "discretization/discrete_body.h"
+#include "solvers/stepper.h"
+
+namespace kerf {
+
+/// Energies at one instant (J; 2D: J per metre of thickness).
+struct EnergyState {
+  double kinetic = 0.0;
+  double strain = 0.0;
+  double external_work = 0.0;  // work of the external loads since t = 0
+  double total() const { return kinetic + strain - external_work; }
+};
+
+class ProbeSet {
+ public:
+  /// Throws, naming the probe's scene line, when a point lies outside the body.
+  ProbeSet(const Scene& scene, const DiscreteBody& body);
+
+  std::vector<std::string> columns() const;  // without the leading "time"
+  bool needs_reaction() const;
+  bool needs_energy() const;
+  /// `reaction` may be empty when no probe needs it.
+  std::vector<double> values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
+  nlohmann::json final_values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
+
+ private:
+  struct Resolved {
+    Probe probe;
+    PointInterpolation interpolation;  // displacement
+    std::vector<Index> nodes;          // reaction
+  };
+  std::vector<double> probe_values(const Resolved& r, const SolverState& state, const Vector& reaction,
+                                   const EnergyState& energy) const;
+  std::vector<Resolved> probes_;
+  int dim_;
+};
+
+}  // namespace kerf

@@ -1,0 +1,177 @@
+#include "app/run_scene.h"
+
+#include <algorithm>
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "app/probe_set.h"
+#include "core/check.h"
+#include "core/run_report.h"
+#include "discretization/body_factory.h"
+#include "kerf/version.h"
+#include "output/atomic_file.h"
+#include "output/probe_table.h"
+#include "output/vtk_series.h"
+#include "problem/scene_json.h"
+#include "solvers/stepper.h"
+
+namespace kerf {
+namespace {
+
+using nlohmann::json;
+
+std::atomic<bool> interrupted{false};
+
+void refuse_unsupported(const Scene& scene) {
+  KERF_CHECK(scene.contact.empty(), scene.contact.front().where.describe(),
+             ": contact is not implemented yet (it arrives with the studies, issue 5)");
+  KERF_CHECK(scene.cuts.empty(), scene.cuts.front().where.describe(),
+             ": cuts are not implemented yet (they arrive with issue 4)");
+}
+
+/// Mean number of other nodes a node is coupled to (shares a cell or support with).
+double mean_neighbors(const DiscreteBody& body) {
+  const int dpn = body.dofs_per_node();
+  std::vector<std::vector<Index>> neighbors(body.node_count());
+  body.visit_couplings([&](std::span<const Index> dofs) {
+    for (std::size_t i = 0; i < dofs.size(); i += dpn)
+      for (std::size_t j = 0; j < dofs.size(); j += dpn)
+        if (i != j) neighbors[dofs[i] / dpn].push_back(dofs[j] / dpn);
+  });
+  double total = 0.0;
+  for (auto& n : neighbors) {
+    std::sort(n.begin(), n.end());
+    total += static_cast<double>(std::unique(n.begin(), n.end()) - n.begin());
+  }
+  return body.node_count() ? total / body.node_count() : 0.0;
+}
+
+json milliseconds_summary(std::vector<double> seconds) {
+  if (seconds.empty()) return {{"median", 0.0}, {"mean", 0.0}, {"max", 0.0}};
+  std::sort(seconds.begin(), seconds.end());
+  double sum = 0.0;
+  for (double s : seconds) sum += s;
+  std::size_t n = seconds.size();
+  double median = n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
+  return {{"median", 1e3 * median}, {"mean", 1e3 * sum / n}, {"max", 1e3 * seconds.back()}};
+}
+
+void fill_report(json& summary, const RunReport& report) {
+  json phases = json::object();
+  for (const auto& [name, seconds] : report.phases.all()) phases[name + "_s"] = seconds;
+  summary["timing"]["phases"] = phases;
+  summary["timing"]["step_ms"] = milliseconds_summary(report.step_seconds);
+  summary["timing"]["cut_update_ms"] = {{"median", 0.0}, {"max", 0.0}, {"count", 0}};
+  summary["stages"] = report.stages;
+  if (!report.warnings.empty()) summary["warnings"] = report.warnings;
+}
+
+}  // namespace
+
+RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
+  refuse_unsupported(scene);
+  RunOutcome outcome;
+  outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
+  std::filesystem::create_directories(outcome.directory);
+  const std::string summary_path = outcome.directory + "/summary.json";
+  Scene resolved = scene;
+  resolved.output.dir = outcome.directory;
+  json& summary = outcome.summary;
+  summary = {{"kerf_version", version}, {"scene", scene_to_json(resolved)}, {"status", "running"}};
+  write_file_atomically(summary_path, summary.dump(2));
+
+  RunReport report;
+  const double start = now_seconds();
+  auto previous_handler = std::signal(SIGINT, [](int) { interrupted = true; });
+  interrupted = false;
+  try {
+    std::unique_ptr<DiscreteBody> body = make_body(scene, report);
+    ProbeSet probes(scene, *body);
+    std::unique_ptr<Stepper> stepper = make_stepper(*body, scene, report);
+    SolverState state;
+    {
+      ScopedTimer timer(report.phases, "setup");
+      stepper->initialize(state);
+    }
+    summary["counts"] = {{"nodes", body->node_count()},
+                         {"dofs", body->dof_count()},
+                         {"elements", body->element_count()},
+                         {"neighbors_mean", mean_neighbors(*body)}};
+    summary["timing"]["setup_s"] = now_seconds() - start;
+
+    const int every = scene.output.vtk_every;
+    std::unique_ptr<VtkSeries> vtk;
+    if (every > 0) vtk = std::make_unique<VtkSeries>(outcome.directory, scene.name);
+    std::vector<std::string> columns = probes.columns();
+    columns.insert(columns.begin(), "time");
+    ProbeTable table(outcome.directory + "/probes.csv", columns);
+    EnergyState energy;
+    Vector reaction, f_before, f_after;
+    auto observe = [&](bool final_step) {
+      ScopedTimer timer(report.phases, "output");
+      if (probes.needs_reaction()) reaction = stepper->reaction(state);
+      if (probes.needs_energy()) {
+        energy.kinetic = stepper->kinetic_energy(state);
+        energy.strain = body->strain_energy(state.u);
+      }
+      std::vector<double> row = probes.values(state, reaction, energy);
+      row.insert(row.begin(), state.t);
+      table.append(row);
+      if (vtk) {
+        BodySnapshot snapshot;
+        body->snapshot(state.u, snapshot);
+        vtk->write(snapshot, state.t);
+        report.add_stage("vtk");
+      }
+      if (final_step) summary["probes"] = probes.final_values(state, reaction, energy);
+    };
+    observe(false);
+    const int steps = stepper->step_count();
+    const double dt = stepper->time_step();
+    const bool static_run = scene.solve.analysis == Analysis::static_analysis;
+    const int output_every = every > 0 ? every : 1;
+    const double loop_start = now_seconds();
+    for (int i = 1; i <= steps; ++i) {
+      KERF_CHECK(!interrupted, "interrupted (Ctrl-C) at step ", i, " of ", steps,
+                 "; the results written so far are complete and readable");
+      Vector u_before;
+      if (probes.needs_energy()) {
+        body->external_force(state.t, f_before);
+        u_before = state.u;
+      }
+      double step_start = now_seconds();
+      stepper->advance(state, dt);
+      report.step_seconds.push_back(now_seconds() - step_start);
+      if (probes.needs_energy()) {
+        // Trapezoidal work of the external loads (static: scaled by the load factor).
+        body->external_force(state.t, f_after);
+        double before = static_run ? state.t - dt : 1.0, after = static_run ? state.t : 1.0;
+        energy.external_work += 0.5 * (before * f_before + after * f_after).dot(state.u - u_before);
+      }
+      bool last = i == steps;
+      bool output_step = last || (static_run ? true : i % output_every == 0);
+      if (output_step) observe(last);
+      if (!options.quiet && (last || i % std::max(1, steps / 10) == 0))
+        std::fprintf(stderr, "kerf: %s step %d/%d  t = %.6g  (%.3g s)\n", scene.name.c_str(), i, steps, state.t,
+                     now_seconds() - start);
+    }
+    summary["timing"]["solve_s"] = now_seconds() - loop_start;
+    fill_report(summary, report);
+    summary["status"] = "ok";
+    write_file_atomically(summary_path, summary.dump(2));
+  } catch (const std::exception& e) {
+    std::signal(SIGINT, previous_handler);
+    fill_report(summary, report);
+    summary["status"] = "error";
+    summary["error"] = e.what();
+    write_file_atomically(summary_path, summary.dump(2));
+    throw;
+  }
+  std::signal(SIGINT, previous_handler);
+  return outcome;
+}
+
+}  // namespace kerf

@@ -1,0 +1,25 @@
+#pragma once
+// One run of a scene, end to end: discretize, step, observe, write results.
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "problem/scene.h"
+
+namespace kerf {
+
+struct RunOptions {
+  std::string out_dir;  // overrides output.dir when not empty
+  bool quiet = false;
+};
+
+struct RunOutcome {
+  std::string directory;
+  nlohmann::json summary;
+};
+
+/// Writes summary.json (status "ok"), probes.csv and the ParaView series.
+/// On failure, writes summary.json with status "error" and the message, keeps
+/// every file already written, and rethrows.
+RunOutcome run_scene(const Scene& scene, const RunOptions& options = {});
+
+}  // namespace kerf

@@ -1,0 +1,13 @@
+#pragma once
+// Scene -> discretized body: meshes the domain (or reads the mesh) and builds
+// the method the scene asks for. Records the stages it builds in the report.
+#include <memory>
+
+#include "core/run_report.h"
+#include "discretization/discrete_body.h"
+
+namespace kerf {
+
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report);
+
+}  // namespace kerf

@@ -1,0 +1,94 @@
+#include "output/vtk_series.h"
+
+#include <vtkCellArray.h>
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkIdTypeArray.h>
+#include <vtkNew.h>
+#include <vtkPointData.h>
+#include <vtkPoints.h>
+#include <vtkUnsignedCharArray.h>
+#include <vtkUnstructuredGrid.h>
+#include <vtkXMLUnstructuredGridWriter.h>
+
+#include <cstdio>
+#include <sstream>
+
+#include "core/check.h"
+#include "output/atomic_file.h"
+
+namespace kerf {
+namespace {
+
+vtkNew<vtkDoubleArray> make_array(const OutputField& field, std::size_t tuples) {
+  vtkNew<vtkDoubleArray> array;
+  array->SetName(field.name.c_str());
+  array->SetNumberOfComponents(field.components);
+  array->SetNumberOfTuples(static_cast<vtkIdType>(tuples));
+  KERF_CHECK(field.values.size() == tuples * field.components, "field '", field.name, "' has ", field.values.size(),
+             " values; expected ", tuples * field.components);
+  std::copy(field.values.begin(), field.values.end(), array->GetPointer(0));
+  return array;
+}
+
+}  // namespace
+
+void write_vtu(const BodySnapshot& s, const std::string& path) {
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(s.points.size()));
+  for (std::size_t i = 0; i < s.points.size(); ++i)
+    points->SetPoint(static_cast<vtkIdType>(i), s.points[i].data());
+  vtkNew<vtkIdTypeArray> offsets, connectivity;
+  offsets->SetNumberOfTuples(static_cast<vtkIdType>(s.offsets.size() + 1));
+  offsets->SetValue(0, 0);
+  for (std::size_t c = 0; c < s.offsets.size(); ++c) offsets->SetValue(static_cast<vtkIdType>(c + 1), s.offsets[c]);
+  connectivity->SetNumberOfTuples(static_cast<vtkIdType>(s.connectivity.size()));
+  for (std::size_t k = 0; k < s.connectivity.size(); ++k)
+    connectivity->SetValue(static_cast<vtkIdType>(k), s.connectivity[k]);
+  vtkNew<vtkCellArray> cells;
+  cells->SetData(offsets, connectivity);
+  vtkNew<vtkUnsignedCharArray> types;
+  types->SetNumberOfTuples(static_cast<vtkIdType>(s.cell_types.size()));
+  for (std::size_t c = 0; c < s.cell_types.size(); ++c) types->SetValue(static_cast<vtkIdType>(c), s.cell_types[c]);
+
+  vtkNew<vtkUnstructuredGrid> grid;
+  grid->SetPoints(points);
+  grid->SetCells(types, cells);
+  for (const OutputField& f : s.point_fields) {
+    auto array = make_array(f, s.points.size());
+    grid->GetPointData()->AddArray(array);
+    if (f.name == "displacement") grid->GetPointData()->SetVectors(array);
+  }
+  for (const OutputField& f : s.cell_fields) grid->GetCellData()->AddArray(make_array(f, s.cell_types.size()));
+
+  std::string temporary = temporary_path(path);
+  vtkNew<vtkXMLUnstructuredGridWriter> writer;
+  writer->SetFileName(temporary.c_str());
+  writer->SetInputData(grid);
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  KERF_CHECK(writer->Write() == 1, "VTK could not write ", temporary);
+  commit_file(temporary, path);
+}
+
+VtkSeries::VtkSeries(std::string directory, std::string name)
+    : directory_(std::move(directory)), name_(std::move(name)), pvd_path_(directory_ + "/" + name_ + ".pvd") {}
+
+std::string VtkSeries::write(const BodySnapshot& snapshot, double time) {
+  char file[512];
+  std::snprintf(file, sizeof file, "%s_%04zu.vtu", name_.c_str(), entries_.size());
+  std::string path = directory_ + "/" + file;
+  write_vtu(snapshot, path);
+  entries_.emplace_back(time, file);
+  std::ostringstream pvd;
+  pvd.precision(17);
+  pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  for (const auto& [t, name] : entries_)
+    pvd << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << name << "\"/>\n";
+  pvd << "  </Collection>\n</VTKFile>\n";
+  write_file_atomically(pvd_path_, pvd.str());
+  return path;
+}
+
+}  // namespace kerf

@@ -1,0 +1,110 @@
+#include "solvers/central_difference.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/check.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf {
+
+double damped_critical_step(double undamped_step, double beta) {
+  double omega = 2.0 / undamped_step;
+  double xi = 0.5 * beta * omega;
+  return undamped_step * (std::sqrt(1.0 + xi * xi) - xi);
+}
+
+namespace {
+
+class CentralDifferenceStepper final : public Stepper {
+ public:
+  CentralDifferenceStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
+      : body_(body), options_(scene.solve), alpha_(scene.material.damping_mass),
+        beta_(scene.material.damping_stiffness), free_(body.dof_count(), body.dirichlet(0.0)) {
+    ScopedTimer timer(report.phases, "setup");
+    report.add_stage("mass");
+    mass_ = body_.lumped_mass();
+    KERF_CHECK((mass_.array() > 0.0).all(), "the lumped mass has a zero or negative entry: central differences need a "
+               "positive diagonal mass");
+    inverse_mass_ = mass_.cwiseInverse();
+    critical_step_ = damped_critical_step(body_.critical_time_step(), beta_);
+    if (options_.dt > critical_step_) {
+      std::ostringstream why;
+      why << scene.file << ": key 'solve.dt': value " << options_.dt
+          << " s is above the critical time step of central differences for this discretization and material, "
+          << critical_step_ << " s (element frequency bound"
+          << (beta_ > 0 ? ", with stiffness damping" : "") << "); expected dt <= " << critical_step_
+          << " s, or an implicit integrator";
+      throw Error(why.str());
+    }
+  }
+
+  void initialize(SolverState& s) override {
+    const Index n = body_.dof_count();
+    s.u = Vector::Zero(n);
+    s.v = Vector::Zero(n);
+    for (const DirichletDof& d : body_.dirichlet(0.0)) s.u[d.dof] = d.value;
+    body_.external_force(0.0, f_ext_);
+    body_.internal_force(s.u, f_int_);
+    s.a = acceleration(s.v);
+  }
+
+  void advance(SolverState& s, double dt) override {
+    const double t1 = s.t + dt;
+    half_velocity_ = s.v + 0.5 * dt * s.a;
+    zero_constrained(half_velocity_);
+    s.u += dt * half_velocity_;
+    body_.external_force(t1, f_ext_);
+    // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
+    if (beta_ != 0.0)
+      body_.internal_force(s.u + beta_ * half_velocity_, f_int_);
+    else
+      body_.internal_force(s.u, f_int_);
+    s.a = acceleration(half_velocity_);
+    s.v = half_velocity_ + 0.5 * dt * s.a;
+    zero_constrained(s.v);
+    s.t = t1;
+    ++s.step;
+    KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", t1,
+               " s): the displacement became NaN or infinite: the explicit solution diverged");
+  }
+
+  double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(mass_.cwiseProduct(s.v)); }
+  Vector reaction(const SolverState& s) override {
+    Vector r;
+    body_.internal_force(s.u, r);
+    body_.external_force(s.t, f_ext_);
+    return r + mass_.cwiseProduct(s.a + alpha_ * s.v) - f_ext_;
+  }
+  double time_step() const override { return options_.dt; }
+  int step_count() const override {
+    return std::max(1, static_cast<int>(std::llround(options_.duration / options_.dt)));
+  }
+
+ private:
+  Vector acceleration(const Vector& v) const {
+    Vector a = inverse_mass_.cwiseProduct(f_ext_ - f_int_ - alpha_ * mass_.cwiseProduct(v));
+    zero_constrained(a);
+    return a;
+  }
+  void zero_constrained(Vector& x) const {
+    for (Index d = 0; d < x.size(); ++d)
+      if (free_.free_index(d) < 0) x[d] = 0.0;
+  }
+
+  const DiscreteBody& body_;
+  SolveOptions options_;
+  double alpha_, beta_;
+  FreeDofs free_;
+  Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_;
+  double critical_step_ = 0.0;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_central_difference_stepper(const DiscreteBody& body, const Scene& scene,
+                                                         RunReport& report) {
+  return std::make_unique<CentralDifferenceStepper>(body, scene, report);
+}
+
+}  // namespace kerf

@@ -1,0 +1,102 @@
+#include "solvers/cholmod_solver.h"
+
+#include <cholmod.h>
+
+#include <sstream>
+
+namespace kerf {
+namespace {
+
+class CholmodSolver final : public LinearSolver {
+ public:
+  CholmodSolver() {
+    cholmod_start(&common_);
+    common_.supernodal = CHOLMOD_SUPERNODAL;
+    common_.print = 0;
+    common_.error_handler = nullptr;
+  }
+  ~CholmodSolver() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    if (x_) cholmod_free_dense(&x_, &common_);
+    if (y_) cholmod_free_dense(&y_, &common_);
+    if (e_) cholmod_free_dense(&e_, &common_);
+    cholmod_finish(&common_);
+  }
+  std::string name() const override { return "cholmod"; }
+
+  LinearSolverStatus analyze(const SparseMatrix& pattern) override {
+    cholmod_sparse view = wrap(pattern);
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    factor_ = cholmod_analyze(&view, &common_);
+    if (!factor_ || common_.status < CHOLMOD_OK) return failure("symbolic analysis");
+    return LinearSolverStatus::success();
+  }
+
+  LinearSolverStatus factorize(const SparseMatrix& A) override {
+    if (!factor_) return LinearSolverStatus::failure("cholmod: factorize() before analyze()");
+    cholmod_sparse view = wrap(A);
+    cholmod_factorize(&view, factor_, &common_);
+    if (common_.status == CHOLMOD_NOT_POSDEF) {
+      std::ostringstream why;
+      why << "cholmod: the matrix is not positive definite (pivot " << factor_->minor << " of " << A.rows()
+          << " failed): the body is singular (not enough constraints to remove rigid motion?) or the "
+             "material became unstable";
+      return LinearSolverStatus::failure(why.str());
+    }
+    if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
+    return LinearSolverStatus::success();
+  }
+
+  LinearSolverStatus solve(const Vector& b, Vector& x) override {
+    cholmod_dense rhs{};
+    rhs.nrow = static_cast<size_t>(b.size());
+    rhs.ncol = 1;
+    rhs.nzmax = rhs.nrow;
+    rhs.d = rhs.nrow;
+    rhs.x = const_cast<double*>(b.data());
+    rhs.xtype = CHOLMOD_REAL;
+    rhs.dtype = CHOLMOD_DOUBLE;
+    // solve2 reuses its workspaces, so repeated solves do not allocate.
+    if (!cholmod_solve2(CHOLMOD_A, factor_, &rhs, nullptr, &x_, nullptr, &y_, &e_, &common_))
+      return failure("solve");
+    x = Eigen::Map<const Vector>(static_cast<const double*>(x_->x), b.size());
+    return LinearSolverStatus::success();
+  }
+
+ private:
+  /// A view of the CSR matrix as CHOLMOD's CSC of its transpose: the same
+  /// symmetric matrix; stype = 1 reads only the upper triangle.
+  static cholmod_sparse wrap(const SparseMatrix& A) {
+    cholmod_sparse s{};
+    s.nrow = static_cast<size_t>(A.rows());
+    s.ncol = static_cast<size_t>(A.cols());
+    s.nzmax = static_cast<size_t>(A.nonZeros());
+    s.p = const_cast<Index*>(A.outerIndexPtr());
+    s.i = const_cast<Index*>(A.innerIndexPtr());
+    s.x = const_cast<double*>(A.valuePtr());
+    s.stype = 1;
+    s.itype = CHOLMOD_INT;
+    s.xtype = CHOLMOD_REAL;
+    s.dtype = CHOLMOD_DOUBLE;
+    s.sorted = 1;
+    s.packed = 1;
+    return s;
+  }
+  LinearSolverStatus failure(const char* what) const {
+    std::ostringstream why;
+    why << "cholmod: " << what << " failed (status " << common_.status << ")";
+    return LinearSolverStatus::failure(why.str());
+  }
+
+  cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+  cholmod_dense* x_ = nullptr;
+  cholmod_dense* y_ = nullptr;
+  cholmod_dense* e_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_cholmod_solver() { return std::make_unique<CholmodSolver>(); }
+
+}  // namespace kerf

@@ -1,0 +1,201 @@
+#include "solvers/implicit_steppers.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "core/check.h"
+#include "solvers/implicit_system.h"
+#include "solvers/newton.h"
+
+namespace kerf {
+namespace {
+
+std::string step_name(const char* what, int step, double t) {
+  std::ostringstream s;
+  s << what << " step " << step << " (t = " << t << " s)";
+  return s.str();
+}
+
+void apply_dirichlet(const std::vector<DirichletDof>& prescribed, double scale, Vector& u) {
+  for (const DirichletDof& d : prescribed) u[d.dof] = scale * d.value;
+}
+
+class StaticStepper final : public Stepper {
+ public:
+  StaticStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
+      : body_(body), options_(scene.solve), system_(body, scene.solve, false, report) {}
+
+  void initialize(SolverState& s) override {
+    s.u = Vector::Zero(body_.dof_count());
+    s.v = Vector::Zero(body_.dof_count());
+    s.a = Vector::Zero(body_.dof_count());
+  }
+
+  void advance(SolverState& s, double dt) override {
+    const double load = std::min(1.0, s.t + dt);
+    body_.external_force(load, f_ext_);
+    f_ext_ *= load;
+    apply_dirichlet(body_.dirichlet(load), load, s.u);
+    std::ostringstream where;
+    where << "static load step " << s.step + 1 << " (load factor " << load << ")";
+    auto residual = [&](const Vector& u, Vector& r, bool tangent) {
+      system_.internal_force(u, r, tangent);
+      r -= f_ext_;
+      if (tangent) system_.factorize(0.0, 1.0, where.str());
+    };
+    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), s.u, where.str());
+    s.t = load;
+    ++s.step;
+  }
+
+  double kinetic_energy(const SolverState&) const override { return 0.0; }
+  Vector reaction(const SolverState& s) override {
+    Vector r;
+    system_.internal_force(s.u, r, false);
+    body_.external_force(s.t, f_ext_);
+    return r - s.t * f_ext_;
+  }
+  int last_iterations() const override { return result_.iterations; }
+  double time_step() const override { return 1.0 / options_.load_steps; }
+  int step_count() const override { return options_.load_steps; }
+
+ private:
+  const DiscreteBody& body_;
+  SolveOptions options_;
+  ImplicitSystem system_;
+  Vector f_ext_;
+  NewtonResult result_;
+};
+
+/// One-step implicit schemes written as: a = ca (u - u_n) - cv v_n - cw a_n,
+/// v = v_n + cg (a_n + ...) ...: each scheme supplies a(u) and v(u) and its
+/// matrix coefficients; the Newton loop and reactions are shared.
+class DynamicImplicitStepper : public Stepper {
+ public:
+  DynamicImplicitStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
+      : body_(body),
+        options_(scene.solve),
+        alpha_(scene.material.damping_mass),
+        beta_(scene.material.damping_stiffness),
+        system_(body, scene.solve, true, report) {}
+
+  void initialize(SolverState& s) override {
+    const Index n = body_.dof_count();
+    s.u = Vector::Zero(n);
+    s.v = Vector::Zero(n);
+    apply_dirichlet(body_.dirichlet(0.0), 1.0, s.u);
+    s.a = initial_acceleration(s);
+  }
+
+  void advance(SolverState& s, double dt) override {
+    const double t1 = s.t + dt;
+    body_.external_force(t1, f_ext_);
+    Vector u = s.u;
+    apply_dirichlet(body_.dirichlet(t1), 1.0, u);
+    const std::string where = step_name(name(), s.step + 1, t1);
+    Vector a, v;
+    auto residual = [&](const Vector& x, Vector& r, bool tangent) {
+      system_.internal_force(x, r, tangent);
+      kinematics(s, dt, x, a, v);
+      r += system_.mass_times(a + alpha_ * v) - f_ext_;
+      if (beta_ != 0.0) r += beta_ * system_.stiffness_times(v);
+      if (tangent) {
+        auto [cm, ck] = matrix_coefficients(dt);
+        system_.factorize(cm, ck, where);
+      }
+    };
+    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), u, where);
+    kinematics(s, dt, u, a, v);
+    s.u = std::move(u);
+    s.v = std::move(v);
+    s.a = std::move(a);
+    s.t = t1;
+    ++s.step;
+  }
+
+  double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(system_.mass_times(s.v)); }
+  Vector reaction(const SolverState& s) override {
+    Vector r;
+    system_.internal_force(s.u, r, false);
+    body_.external_force(s.t, f_ext_);
+    r += system_.mass_times(s.a + alpha_ * s.v) - f_ext_;
+    if (beta_ != 0.0) r += beta_ * system_.stiffness_times(s.v);
+    return r;
+  }
+  int last_iterations() const override { return result_.iterations; }
+  double time_step() const override { return options_.dt; }
+  int step_count() const override {
+    return std::max(1, static_cast<int>(std::llround(options_.duration / options_.dt)));
+  }
+
+ protected:
+  virtual const char* name() const = 0;
+  /// a(u) and v(u) of the scheme from the state at the start of the step.
+  virtual void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const = 0;
+  /// dr/du = c_M M + c_K K.
+  virtual std::pair<double, double> matrix_coefficients(double dt) const = 0;
+
+  /// M a0 = f_ext - f_int(u0) - C v0 on the free dofs (zero at constrained dofs).
+  Vector initial_acceleration(const SolverState& s) {
+    Vector f_int;
+    system_.internal_force(s.u, f_int, true);
+    body_.external_force(0.0, f_ext_);
+    Vector rhs = f_ext_ - f_int;
+    system_.factorize(1.0, 0.0, std::string(name()) + " initial acceleration");
+    Vector a = Vector::Zero(body_.dof_count());
+    system_.free().add_to_full(system_.solve(system_.free().restrict_vector(rhs), "initial acceleration"), a);
+    return a;
+  }
+
+  const DiscreteBody& body_;
+  SolveOptions options_;
+  double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
+  ImplicitSystem system_;
+  Vector f_ext_;
+  NewtonResult result_;
+};
+
+class ImplicitEulerStepper final : public DynamicImplicitStepper {
+ public:
+  using DynamicImplicitStepper::DynamicImplicitStepper;
+
+ protected:
+  const char* name() const override { return "implicit Euler"; }
+  void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const override {
+    v = (u - s.u) / dt;
+    a = (v - s.v) / dt;
+  }
+  std::pair<double, double> matrix_coefficients(double dt) const override {
+    return {1.0 / (dt * dt) + alpha_ / dt, 1.0 + beta_ / dt};
+  }
+};
+
+class NewmarkStepper final : public DynamicImplicitStepper {
+ public:
+  using DynamicImplicitStepper::DynamicImplicitStepper;
+
+ protected:
+  const char* name() const override { return "Newmark"; }
+  // Average acceleration: beta = 1/4, gamma = 1/2.
+  void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const override {
+    a = 4.0 / (dt * dt) * (u - s.u - dt * s.v) - s.a;
+    v = s.v + 0.5 * dt * (s.a + a);
+  }
+  std::pair<double, double> matrix_coefficients(double dt) const override {
+    return {4.0 / (dt * dt) + 2.0 * alpha_ / dt, 1.0 + 2.0 * beta_ / dt};
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_static_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+  return std::make_unique<StaticStepper>(body, scene, report);
+}
+std::unique_ptr<Stepper> make_implicit_euler_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+  return std::make_unique<ImplicitEulerStepper>(body, scene, report);
+}
+std::unique_ptr<Stepper> make_newmark_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+  return std::make_unique<NewmarkStepper>(body, scene, report);
+}
+
+}  // namespace kerf

@@ -1,0 +1,14 @@
+#pragma once
+// Static, implicit Euler and Newmark (average acceleration) steppers: each
+// solves r(u) = 0 for the new displacement with Newton on an ImplicitSystem.
+#include <memory>
+
+#include "solvers/stepper.h"
+
+namespace kerf {
+
+std::unique_ptr<Stepper> make_static_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_implicit_euler_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_newmark_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report);
+
+}  // namespace kerf

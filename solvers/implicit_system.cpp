@@ -1,0 +1,107 @@
+#include "solvers/implicit_system.h"
+
+#include "core/check.h"
+
+namespace kerf {
+
+ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass,
+                               RunReport& report)
+    : body_(body), report_(report), free_(body.dof_count(), body.dirichlet(0.0)) {
+  ScopedTimer timer(report_.phases, "setup");
+  KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
+  stiffness_ = build_pattern(body_);
+  system_ = stiffness_;
+  diagonal_ = diagonal_positions(stiffness_);
+  free_.prepare_matrix(stiffness_);
+  LinearSolverOptions linear;
+  linear.kind = options.linear_solver;
+  linear.petsc_options = options.petsc;
+  solver_ = make_linear_solver(linear, report_);
+  if (needs_mass) {
+    has_mass_ = true;
+    lumped_ = options.mass == MassKind::lumped;
+    report_.add_stage("mass");
+    if (lumped_) {
+      lumped_mass_ = body_.lumped_mass();
+    } else {
+      SparseMatrix mass = stiffness_;
+      body_.consistent_mass(add_into(mass));
+      mass_values_.assign(mass.valuePtr(), mass.valuePtr() + mass.nonZeros());
+    }
+  }
+}
+
+void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangent) {
+  ScopedTimer timer(report_.phases, "assembly");
+  if (body_.is_linear()) {
+    if (!stiffness_assembled_) {
+      report_.add_stage("stiffness");
+      body_.tangent(u, add_into(stiffness_), nullptr);
+      stiffness_assembled_ = true;
+      stiffness_changed_ = true;
+    }
+    f = stiffness_ * u;
+    return;
+  }
+  if (!with_tangent) {
+    body_.internal_force(u, f);
+    return;
+  }
+  report_.add_stage("stiffness");
+  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
+  body_.tangent(u, add_into(stiffness_), &f);
+  stiffness_assembled_ = true;
+  stiffness_changed_ = true;
+}
+
+Vector ImplicitSystem::mass_times(const Vector& x) const {
+  KERF_DCHECK(has_mass_);
+  if (lumped_) return lumped_mass_.cwiseProduct(x);
+  Eigen::Map<const SparseMatrix> mass(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
+                                      stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), mass_values_.data());
+  return mass * x;
+}
+
+Vector ImplicitSystem::stiffness_times(const Vector& x) const { return stiffness_ * x; }
+
+void ImplicitSystem::factorize(double cm, double ck, const std::string& where) {
+  if (!stiffness_changed_ && cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_) return;
+  KERF_CHECK(stiffness_assembled_ || ck == 0.0, "internal: factorize before the stiffness was assembled");
+  {
+    ScopedTimer timer(report_.phases, "assembly");
+    const Index nnz = stiffness_.nonZeros();
+    const double* k = stiffness_.valuePtr();
+    double* a = system_.valuePtr();
+    for (Index p = 0; p < nnz; ++p) a[p] = ck * k[p];
+    if (cm != 0.0) {
+      if (lumped_)
+        for (Index r = 0; r < stiffness_.rows(); ++r) a[diagonal_[r]] += cm * lumped_mass_[r];
+      else
+        for (Index p = 0; p < nnz; ++p) a[p] += cm * mass_values_[p];
+    }
+    free_.restrict_values(system_);
+  }
+  ScopedTimer timer(report_.phases, "factorize");
+  if (!analyzed_) {
+    LinearSolverStatus status = solver_->analyze(free_.restricted());
+    KERF_CHECK(status.ok, where, ": ", status.message);
+    analyzed_ = true;
+  }
+  report_.add_stage("factorization");
+  LinearSolverStatus status = solver_->factorize(free_.restricted());
+  KERF_CHECK(status.ok, where, ": ", status.message);
+  stiffness_changed_ = false;
+  last_mass_coefficient_ = cm;
+  last_stiffness_coefficient_ = ck;
+}
+
+Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
+  ScopedTimer timer(report_.phases, "solve");
+  Vector x;
+  LinearSolverStatus status = solver_->solve(rhs_free, x);
+  KERF_CHECK(status.ok, where, ": ", status.message);
+  KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
+  return x;
+}
+
+}  // namespace kerf

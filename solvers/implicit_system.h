@@ -1,0 +1,52 @@
+#pragma once
+// The matrices of an implicit step over all dofs: K(u) and, when asked, the mass
+// M (lumped or consistent, same pattern as K). Forms A = c_M M + c_K K on the
+// free dofs and factorizes it, skipping work that cannot have changed: a linear
+// body assembles K once, and an unchanged A is not factorized again.
+#include <memory>
+
+#include "core/run_report.h"
+#include "solvers/linear_solver.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf {
+
+class ImplicitSystem {
+ public:
+  ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass, RunReport& report);
+
+  const FreeDofs& free() const { return free_; }
+  const DiscreteBody& body() const { return body_; }
+
+  /// f_int(u) into f (all dofs). With `with_tangent`, K(u) is assembled too.
+  /// A linear body assembles K once and computes f = K u.
+  void internal_force(const Vector& u, Vector& f, bool with_tangent);
+  /// M x and K x over all dofs (K: the last assembled).
+  Vector mass_times(const Vector& x) const;
+  Vector stiffness_times(const Vector& x) const;
+  bool has_mass() const { return has_mass_; }
+
+  /// Factorizes c_M M + c_K K restricted to the free dofs, unless unchanged.
+  void factorize(double mass_coefficient, double stiffness_coefficient, const std::string& where);
+  /// x_f = A_ff^-1 b_f.
+  Vector solve(const Vector& rhs_free, const std::string& where);
+
+ private:
+  const DiscreteBody& body_;
+  RunReport& report_;
+  FreeDofs free_;
+  SparseMatrix stiffness_;
+  SparseMatrix system_;          // c_M M + c_K K, all dofs
+  std::vector<double> mass_values_;  // consistent mass in the pattern of K
+  Vector lumped_mass_;
+  std::vector<Index> diagonal_;
+  bool has_mass_ = false;
+  bool lumped_ = false;
+  bool stiffness_assembled_ = false;
+  bool stiffness_changed_ = true;
+  double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
+  bool analyzed_ = false;
+  std::unique_ptr<LinearSolver> solver_;
+};
+
+}  // namespace kerf

@@ -1,0 +1,43 @@
+#pragma once
+// Sparse symmetric positive-definite solves behind one interface. The matrix is
+// row-major CSR with full symmetric storage; its pattern is fixed after analyze().
+#include <memory>
+#include <string>
+
+#include "core/run_report.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf {
+
+struct LinearSolverStatus {
+  bool ok = true;
+  std::string message;
+  static LinearSolverStatus success() { return {}; }
+  static LinearSolverStatus failure(std::string why) { return {false, std::move(why)}; }
+};
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual std::string name() const = 0;
+  /// Symbolic work on the pattern (ordering, preallocation).
+  virtual LinearSolverStatus analyze(const SparseMatrix& pattern) = 0;
+  /// Numeric factorization (or preconditioner set-up) of A, same pattern as analyzed.
+  virtual LinearSolverStatus factorize(const SparseMatrix& A) = 0;
+  /// x = A^-1 b for the last factorized A.
+  virtual LinearSolverStatus solve(const Vector& b, Vector& x) = 0;
+  /// Iterations of the last solve (0 for direct solvers).
+  virtual int last_iterations() const { return 0; }
+};
+
+struct LinearSolverOptions {
+  LinearSolverKind kind = LinearSolverKind::cholmod;
+  std::string petsc_options;       // PETSc options database string
+  double relative_tolerance = 1e-12;  // iterative solvers
+};
+
+/// The one place that knows which backends exist. Records the stages it starts
+/// (petsc) in `report`.
+std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, RunReport& report);
+
+}  // namespace kerf

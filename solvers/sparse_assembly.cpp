@@ -1,0 +1,119 @@
+#include "solvers/sparse_assembly.h"
+
+#include <algorithm>
+
+#include "core/check.h"
+
+namespace kerf {
+
+SparseMatrix build_pattern(const DiscreteBody& body) {
+  const Index n = body.dof_count();
+  std::vector<std::vector<Index>> rows(n);
+  body.visit_couplings([&](std::span<const Index> dofs) {
+    for (Index r : dofs) rows[r].insert(rows[r].end(), dofs.begin(), dofs.end());
+  });
+  SparseMatrix m(n, n);
+  std::vector<Index> counts(n);
+  for (Index r = 0; r < n; ++r) {
+    rows[r].push_back(r);
+    std::sort(rows[r].begin(), rows[r].end());
+    rows[r].erase(std::unique(rows[r].begin(), rows[r].end()), rows[r].end());
+    counts[r] = static_cast<Index>(rows[r].size());
+  }
+  m.reserve(counts);
+  for (Index r = 0; r < n; ++r)
+    for (Index c : rows[r]) m.insert(r, c) = 0.0;
+  m.makeCompressed();
+  return m;
+}
+
+BlockSink add_into(SparseMatrix& matrix, double scale) {
+  const Index* outer = matrix.outerIndexPtr();
+  const Index* inner = matrix.innerIndexPtr();
+  double* values = matrix.valuePtr();
+  return [=](std::span<const Index> dofs, std::span<const double> block) {
+    const std::size_t n = dofs.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Index* begin = inner + outer[dofs[i]];
+      const Index* end = inner + outer[dofs[i] + 1];
+      for (std::size_t j = 0; j < n; ++j) {
+        double v = block[i * n + j];
+        if (v == 0.0) continue;
+        const Index* at = std::lower_bound(begin, end, dofs[j]);
+        KERF_DCHECK(at != end && *at == dofs[j]);
+#pragma omp atomic
+        values[at - inner] += scale * v;
+      }
+    }
+  };
+}
+
+std::vector<Index> diagonal_positions(const SparseMatrix& m) {
+  std::vector<Index> positions(m.rows());
+  for (Index r = 0; r < m.rows(); ++r) {
+    const Index* begin = m.innerIndexPtr() + m.outerIndexPtr()[r];
+    const Index* end = m.innerIndexPtr() + m.outerIndexPtr()[r + 1];
+    const Index* at = std::lower_bound(begin, end, r);
+    KERF_CHECK(at != end && *at == r, "sparse pattern lacks the diagonal entry of row ", r);
+    positions[r] = static_cast<Index>(at - m.innerIndexPtr());
+  }
+  return positions;
+}
+
+FreeDofs::FreeDofs(Index dof_count, const std::vector<DirichletDof>& constrained)
+    : free_of_full_(dof_count, 0) {
+  for (const DirichletDof& d : constrained) free_of_full_[d.dof] = -1;
+  for (Index i = 0; i < dof_count; ++i)
+    if (free_of_full_[i] >= 0) {
+      free_of_full_[i] = static_cast<Index>(full_of_free_.size());
+      full_of_free_.push_back(i);
+    }
+}
+
+Vector FreeDofs::restrict_vector(const Vector& full) const {
+  Vector r(free_count());
+  for (Index i = 0; i < free_count(); ++i) r[i] = full[full_of_free_[i]];
+  return r;
+}
+
+void FreeDofs::add_to_full(const Vector& free, Vector& full) const {
+  for (Index i = 0; i < free_count(); ++i) full[full_of_free_[i]] += free[i];
+}
+
+void FreeDofs::prepare_matrix(const SparseMatrix& full) {
+  const Index n = free_count();
+  std::vector<Index> counts(n, 0);
+  for (Index i = 0; i < n; ++i) {
+    Index r = full_of_free_[i];
+    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
+      if (free_of_full_[full.innerIndexPtr()[p]] >= 0) ++counts[i];
+  }
+  restricted_ = SparseMatrix(n, n);
+  restricted_.reserve(counts);
+  source_position_.clear();
+  for (Index i = 0; i < n; ++i) {
+    Index r = full_of_free_[i];
+    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p) {
+      Index j = free_of_full_[full.innerIndexPtr()[p]];
+      if (j < 0) continue;
+      restricted_.insert(i, j) = 0.0;
+    }
+  }
+  restricted_.makeCompressed();
+  // Columns stay sorted (free numbering preserves order), so positions line up row by row.
+  for (Index i = 0; i < n; ++i) {
+    Index r = full_of_free_[i];
+    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
+      if (free_of_full_[full.innerIndexPtr()[p]] >= 0) source_position_.push_back(p);
+  }
+}
+
+void FreeDofs::restrict_values(const SparseMatrix& full) {
+  double* out = restricted_.valuePtr();
+  const double* in = full.valuePtr();
+  const std::size_t count = source_position_.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t k = 0; k < count; ++k) out[k] = in[source_position_[k]];
+}
+
+}  // namespace kerf

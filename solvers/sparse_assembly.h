@@ -1,0 +1,46 @@
+#pragma once
+// Global sparse matrices over all dofs (row-major CSR, full symmetric storage),
+// filled through the body's BlockSink, and their restriction to the free dofs.
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "discretization/discrete_body.h"
+
+namespace kerf {
+
+using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
+
+/// The pattern of every block the body will write, values zero; diagonal always present.
+SparseMatrix build_pattern(const DiscreteBody& body);
+
+/// A sink adding scale * block into `matrix` (whose pattern holds the block); thread-safe.
+BlockSink add_into(SparseMatrix& matrix, double scale = 1.0);
+
+/// Positions of the diagonal entries in matrix.valuePtr().
+std::vector<Index> diagonal_positions(const SparseMatrix& matrix);
+
+/// The split of dofs into free and constrained, and the restriction A -> A_ff.
+class FreeDofs {
+ public:
+  FreeDofs(Index dof_count, const std::vector<DirichletDof>& constrained);
+  Index free_count() const { return static_cast<Index>(full_of_free_.size()); }
+  /// -1 for a constrained dof.
+  Index free_index(Index dof) const { return free_of_full_[dof]; }
+  const std::vector<Index>& free_dofs() const { return full_of_free_; }
+
+  Vector restrict_vector(const Vector& full) const;
+  void add_to_full(const Vector& free, Vector& full) const;
+
+  /// Builds the free-free pattern of `full` once; `restrict_values` then copies values.
+  void prepare_matrix(const SparseMatrix& full);
+  const SparseMatrix& restricted() const { return restricted_; }
+  void restrict_values(const SparseMatrix& full);
+
+ private:
+  std::vector<Index> free_of_full_;
+  std::vector<Index> full_of_free_;
+  SparseMatrix restricted_;
+  std::vector<Index> source_position_;  // for each restricted value, its position in the full matrix
+};
+
+}  // namespace kerf

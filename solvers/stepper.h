@@ -1,0 +1,37 @@
+#pragma once
+// Time integration of a DiscreteBody, whatever the method. A static analysis is
+// a stepper too: its steps are load increments in pseudo-time 0..1.
+#include <memory>
+
+#include "core/run_report.h"
+#include "discretization/discrete_body.h"
+
+namespace kerf {
+
+struct SolverState {
+  double t = 0.0;  // s (static: load factor)
+  int step = 0;
+  Vector u, v, a;  // m, m/s, m/s^2 over all dofs
+};
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  /// Sets u to the prescribed values, v = 0 and the initial acceleration.
+  virtual void initialize(SolverState& state) = 0;
+  virtual void advance(SolverState& state, double dt) = 0;
+  virtual double kinetic_energy(const SolverState& state) const = 0;
+  /// f_int(u) + M a + C v - f_ext over all dofs: the support reactions at constrained dofs (N).
+  virtual Vector reaction(const SolverState& state) = 0;
+  /// Newton iterations of the last step (0 for explicit).
+  virtual int last_iterations() const { return 0; }
+  /// The time step the run uses (s); static: 1 / load_steps.
+  virtual double time_step() const = 0;
+  virtual int step_count() const = 0;
+};
+
+/// Picks static, implicit Euler, Newmark or central differences from the scene.
+/// Refuses an explicit dt above the critical estimate, naming the estimate.
+std::unique_ptr<Stepper> make_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report);
+
+}  // namespace kerf

@@ -1,0 +1,20 @@
+#include "solvers/central_difference.h"
+#include "solvers/implicit_steppers.h"
+#include "solvers/stepper.h"
+
+namespace kerf {
+
+std::unique_ptr<Stepper> make_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+  if (scene.solve.analysis == Analysis::static_analysis) return make_static_stepper(body, scene, report);
+  switch (scene.solve.integrator) {
+    case Integrator::implicit_euler:
+      return make_implicit_euler_stepper(body, scene, report);
+    case Integrator::newmark:
+      return make_newmark_stepper(body, scene, report);
+    case Integrator::central_difference:
+      return make_central_difference_stepper(body, scene, report);
+  }
+  return nullptr;
+}
+
+}  // namespace kerf
