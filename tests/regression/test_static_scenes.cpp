@@ -1,0 +1,132 @@
+// Static scenes end to end (scene file -> kerf run -> summary.json): the
+// cantilever against beam theory, the plane-strain plate against its exact
+// solution, reactions against the applied loads, and what a run builds.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "app/run_scene.h"
+#include "problem/scene_reader.h"
+#include "core/check.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+using nlohmann::json;
+
+json run(const std::string& scene_file, std::vector<std::string> overrides, const std::string& test) {
+  overrides.push_back("output.dir=" + testing::output_directory(test));
+  Scene scene = read_scene(testing::source_path(scene_file), overrides);
+  RunOptions options;
+  options.quiet = true;
+  return run_scene(scene, options).summary;
+}
+
+// Euler-Bernoulli bending plus Timoshenko shear deflection of a cantilever
+// of rectangular section b x h under its own weight q = rho g b h.
+double beam_tip_deflection(double E, double nu, double rho, double g, double L, double b, double h) {
+  double q = rho * g * b * h, I = b * h * h * h / 12.0, G = E / (2 * (1 + nu));
+  double kappa = 10 * (1 + nu) / (12 + 11 * nu);
+  return q * std::pow(L, 4) / (8 * E * I) + q * L * L / (2 * kappa * G * b * h);
+}
+
+TEST(StaticScenes, CantileverTet10MatchesBeamTheoryWithin3Percent) {
+  json s = run("scenes/cantilever.yaml", {"discretization.fem.size=0.0025", "output.vtk=false"}, "cantilever_fine");
+  ASSERT_EQ(s["status"], "ok");
+  double w = -s["probes"]["tip"]["displacement"][2].get<double>();
+  double beam = beam_tip_deflection(1e6, 0.3, 1000, 9.81, 0.1, 0.02, 0.02);
+  std::printf("cantilever tet10: tip %.6e m, beam theory %.6e m, difference %.2f%%\n", w, beam,
+              100 * (w - beam) / beam);
+  EXPECT_NEAR(w, beam, 0.03 * beam);
+  // The clamp carries the whole weight.
+  EXPECT_NEAR(s["probes"]["support"]["reaction"][2].get<double>(), 1000 * 9.81 * 0.1 * 0.02 * 0.02, 1e-9);
+}
+
+TEST(StaticScenes, PlateInTensionHasTheExactPlaneStrainSolution) {
+  json s = run("scenes/plate_tension_2d.yaml", {}, "plate");
+  ASSERT_EQ(s["status"], "ok");
+  // Uniform stress sigma_xx = 1000 Pa; plane strain: eps_xx = (1 - nu^2) sigma / E, eps_yy = -nu (1 + nu) sigma / E.
+  const double E = 1e6, nu = 0.3, sigma = 1000, L = 0.1, H = 0.05;
+  auto corner = s["probes"]["corner"]["displacement"];
+  EXPECT_NEAR(corner[0].get<double>(), (1 - nu * nu) * sigma * L / E, 1e-10 * sigma * L / E);
+  EXPECT_NEAR(corner[1].get<double>(), -nu * (1 + nu) * sigma * H / E, 1e-10 * sigma * L / E);
+  EXPECT_NEAR(s["probes"]["support"]["reaction"][0].get<double>(), -sigma * H, 1e-9);
+}
+
+TEST(StaticScenes, LinearCholmodRunBuildsNoMassAndNoPetsc) {
+  json s = run("scenes/cantilever.yaml", {"discretization.fem.element=tet4", "discretization.fem.size=0.01",
+                                          "output.vtk=false"}, "stages");
+  auto stages = s["stages"].get<std::vector<std::string>>();
+  auto has = [&](const char* name) { return std::find(stages.begin(), stages.end(), name) != stages.end(); };
+  EXPECT_TRUE(has("mesh"));
+  EXPECT_TRUE(has("stiffness"));
+  EXPECT_TRUE(has("factorization"));
+  EXPECT_FALSE(has("mass"));
+  EXPECT_FALSE(has("petsc"));
+  EXPECT_FALSE(has("vtk"));
+}
+
+TEST(StaticScenes, NonlinearMaterialsConvergeAndAgreeAtSmallLoads) {
+  double reference = 0.0;
+  for (const char* model : {"linear", "corotational", "stvk", "neohookean"}) {
+    json s = run("scenes/cantilever.yaml",
+                 {"material.model=" + std::string(model), "material.young=1e8", "discretization.fem.size=0.01",
+                  "output.vtk=false"},
+                 std::string("small_load_") + model);
+    ASSERT_EQ(s["status"], "ok") << model;
+    double w = s["probes"]["tip"]["displacement"][2].get<double>();
+    if (reference == 0.0) reference = w;
+    EXPECT_NEAR(w, reference, 1e-3 * std::abs(reference)) << model;
+  }
+}
+
+TEST(StaticScenes, PetscSolverAgreesWithCholmod) {
+  std::vector<std::string> common = {"discretization.fem.element=tet4", "discretization.fem.size=0.005",
+                                     "output.vtk=false"};
+  json direct = run("scenes/cantilever.yaml", common, "cholmod");
+  auto petsc_options = common;
+  petsc_options.push_back("solve.linear_solver=petsc");
+  petsc_options.push_back("solve.petsc=-ksp_type cg -pc_type gamg -ksp_rtol 1e-12");
+  json petsc = run("scenes/cantilever.yaml", petsc_options, "petsc");
+  ASSERT_EQ(petsc["status"], "ok");
+  double a = direct["probes"]["tip"]["displacement"][2].get<double>();
+  double b = petsc["probes"]["tip"]["displacement"][2].get<double>();
+  EXPECT_NEAR(a, b, 1e-8 * std::abs(a));
+  auto stages = petsc["stages"].get<std::vector<std::string>>();
+  EXPECT_NE(std::find(stages.begin(), stages.end(), "petsc"), stages.end());
+}
+
+TEST(StaticScenes, MisspelledPetscOptionIsReported) {
+  try {
+    run("scenes/cantilever.yaml",
+        {"discretization.fem.element=tet4", "discretization.fem.size=0.01", "output.vtk=false",
+         "solve.linear_solver=petsc", "solve.petsc=-ksp_typo cg"},
+        "petsc_typo");
+    FAIL() << "a misspelled PETSc option was accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("-ksp_typo"), std::string::npos) << e.what();
+  }
+  // The summary of the failed run says why.
+  std::ifstream in(std::string(KERF_BINARY_DIR) + "/test_output/petsc_typo/summary.json");
+  json s = json::parse(in);
+  EXPECT_EQ(s["status"], "error");
+  EXPECT_NE(s["error"].get<std::string>().find("ksp_typo"), std::string::npos);
+}
+
+TEST(StaticScenes, EveryLinearBackendGivesTheSameAnswer) {
+  std::vector<double> tips;
+  for (const char* solver : {"cholmod", "ldlt", "cg"}) {
+    json s = run("scenes/cantilever.yaml",
+                 {"discretization.fem.element=tet4", "discretization.fem.size=0.01", "output.vtk=false",
+                  std::string("solve.linear_solver=") + solver},
+                 std::string("backend_") + solver);
+    tips.push_back(s["probes"]["tip"]["displacement"][2].get<double>());
+  }
+  EXPECT_NEAR(tips[1], tips[0], 1e-9 * std::abs(tips[0]));
+  EXPECT_NEAR(tips[2], tips[0], 1e-7 * std::abs(tips[0]));
+}
+
+}  // namespace
+}  // namespace kerf

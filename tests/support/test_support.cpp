@@ -1,0 +1,39 @@
+#include "support/test_support.h"
+
+#include <filesystem>
+
+#include "geometry/box_mesher.h"
+#include "problem/scene_reader.h"
+
+namespace kerf::testing {
+
+Scene scene_from_text(const std::string& yaml, const std::vector<std::string>& overrides) {
+  return parse_scene(yaml, "test.yaml", source_path("scenes"), overrides);
+}
+
+std::string output_directory(const std::string& test_name) {
+  std::string dir = std::string(KERF_BINARY_DIR) + "/test_output/" + test_name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+Mesh unit_box_mesh(int dimension, int order, double size) {
+  BoxMeshRequest r;
+  r.dimension = dimension;
+  r.order = order;
+  r.min = Vec3::Zero();
+  r.max = dimension == 3 ? Vec3::Ones() : Vec3(1, 1, 0);
+  r.size = size;
+  return mesh_box(r);
+}
+
+SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u) {
+  SparseMatrix K = build_pattern(body);
+  body.tangent(u, add_into(K), nullptr);
+  return K;
+}
+
+std::string source_path(const std::string& relative) { return std::string(KERF_SOURCE_DIR) + "/" + relative; }
+
+}  // namespace kerf::testing

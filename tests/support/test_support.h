@@ -1,0 +1,26 @@
+#pragma once
+// Helpers shared by the tests: scenes from text, small meshes, full stiffness matrices.
+#include <string>
+#include <vector>
+
+#include "discretization/fem/fem_body.h"
+#include "problem/scene.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf::testing {
+
+/// Parses a scene given as YAML text (relative paths from the source tree's scenes/).
+Scene scene_from_text(const std::string& yaml, const std::vector<std::string>& overrides = {});
+
+/// A fresh output directory under the build tree for one test.
+std::string output_directory(const std::string& test_name);
+
+/// A mesh of the unit box [0,1]^dim made by gmsh.
+Mesh unit_box_mesh(int dimension, int order, double size);
+
+/// K(u) over all dofs, assembled through the body's sink.
+SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u);
+
+std::string source_path(const std::string& relative);
+
+}  // namespace kerf::testing

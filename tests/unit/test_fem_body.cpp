@@ -1,0 +1,197 @@
+// The FEM body on real gmsh meshes: patch test, rigid-body modes in the null
+// space, tangent by finite differences for every material, mass and load totals.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <Eigen/SparseCholesky>
+
+#include "core/check.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+struct ElementCase {
+  ElementType element;
+  int dim, order;
+};
+
+const ElementCase all_elements[] = {{ElementType::tet4, 3, 1},
+                                    {ElementType::tet10, 3, 2},
+                                    {ElementType::tri3, 2, 1},
+                                    {ElementType::tri6, 2, 2}};
+
+Scene plain_scene(int dim, MaterialModel model = MaterialModel::linear) {
+  Scene s = testing::scene_from_text(dim == 3 ? "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
+                                              : "dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\n");
+  s.material.model = model;
+  return s;
+}
+
+class FemElementTest : public ::testing::TestWithParam<ElementCase> {
+ protected:
+  FemBody make_body(MaterialModel model = MaterialModel::linear, double size = 0.5) const {
+    const ElementCase& e = GetParam();
+    return FemBody(plain_scene(e.dim, model), testing::unit_box_mesh(e.dim, e.order, size));
+  }
+};
+
+// A linear displacement field u = A x + b imposed on every boundary node is
+// reproduced at the interior nodes by the solve.
+TEST_P(FemElementTest, PatchTestReproducesLinearField) {
+  FemBody body = make_body(MaterialModel::linear, 0.34);
+  const int dim = GetParam().dim;
+  const Mesh& mesh = body.mesh();
+  Mat3 A;
+  A << 1e-3, 2e-3, -1e-3, 0.5e-3, -2e-3, 1.5e-3, 0.7e-3, 0.3e-3, 1e-3;
+  Vec3 b(1e-4, -2e-4, 3e-4);
+  Vector exact(body.dof_count());
+  for (Index n = 0; n < mesh.node_count(); ++n)
+    for (int i = 0; i < dim; ++i) exact[dim * n + i] = (A * mesh.nodes[n] + b)[i];
+  BoundaryFacets facets = boundary_facets(mesh);
+  std::vector<char> on_boundary = boundary_node_flags(mesh, facets);
+  std::vector<DirichletDof> fixed;
+  for (Index n = 0; n < mesh.node_count(); ++n)
+    if (on_boundary[n])
+      for (int i = 0; i < dim; ++i) fixed.push_back({dim * n + i, exact[dim * n + i]});
+  ASSERT_LT(static_cast<Index>(fixed.size()), body.dof_count()) << "the mesh has no interior node";
+  SparseMatrix K = testing::assemble_stiffness(body, Vector::Zero(body.dof_count()));
+  FreeDofs free(body.dof_count(), fixed);
+  free.prepare_matrix(K);
+  free.restrict_values(K);
+  Vector boundary_part = Vector::Zero(body.dof_count());
+  for (const DirichletDof& d : fixed) boundary_part[d.dof] = d.value;
+  Vector rhs = -free.restrict_vector(K * boundary_part);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(Eigen::SparseMatrix<double>(free.restricted()));
+  Vector interior = solver.solve(rhs);
+  Vector expected = free.restrict_vector(exact);
+  EXPECT_LT((interior - expected).norm() / expected.norm(), 1e-10);
+}
+
+TEST_P(FemElementTest, RigidBodyModesAreInTheNullSpace) {
+  FemBody body = make_body();
+  const int dim = GetParam().dim;
+  const Mesh& mesh = body.mesh();
+  SparseMatrix K = testing::assemble_stiffness(body, Vector::Zero(body.dof_count()));
+  double scale = 0.0;
+  for (Index k = 0; k < K.nonZeros(); ++k) scale = std::max(scale, std::abs(K.valuePtr()[k]));
+  std::vector<Vector> modes;
+  for (int i = 0; i < dim; ++i) {
+    Vector t = Vector::Zero(body.dof_count());
+    for (Index n = 0; n < mesh.node_count(); ++n) t[dim * n + i] = 1.0;
+    modes.push_back(t);
+  }
+  for (int axis = (dim == 3 ? 0 : 2); axis < 3; ++axis) {
+    Vector r = Vector::Zero(body.dof_count());
+    Vec3 w = Vec3::Unit(axis);
+    for (Index n = 0; n < mesh.node_count(); ++n) {
+      Vec3 v = w.cross(mesh.nodes[n]);
+      for (int i = 0; i < dim; ++i) r[dim * n + i] = v[i];
+    }
+    modes.push_back(r);
+  }
+  for (const Vector& m : modes) EXPECT_LT((K * m).norm() / (scale * m.norm()), 1e-12);
+}
+
+TEST_P(FemElementTest, TangentMatchesFiniteDifferencesForEveryMaterial) {
+  for (MaterialModel model :
+       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+    FemBody body = make_body(model, 0.5);
+    std::srand(11);
+    Vector u = 0.05 * Vector::Random(body.dof_count());
+    Vector du = Vector::Random(body.dof_count());
+    SparseMatrix K = testing::assemble_stiffness(body, u);
+    Vector fp, fm, f;
+    const double h = 1e-6;
+    body.internal_force(u + h * du, fp);
+    body.internal_force(u - h * du, fm);
+    Vector numeric = (fp - fm) / (2 * h);
+    Vector analytic = K * du;
+    EXPECT_LT((analytic - numeric).norm(), 1e-6 * analytic.norm()) << to_string(model);
+    // The force returned with the tangent is the internal force.
+    SparseMatrix K2 = build_pattern(body);
+    body.tangent(u, add_into(K2), &f);
+    Vector f_alone;
+    body.internal_force(u, f_alone);
+    EXPECT_LT((f - f_alone).norm(), 1e-12 * f_alone.norm()) << to_string(model);
+    // The force is the gradient of the strain energy.
+    double numeric_power = (body.strain_energy(u + h * du) - body.strain_energy(u - h * du)) / (2 * h);
+    EXPECT_NEAR(f_alone.dot(du), numeric_power, 1e-6 * std::abs(numeric_power)) << to_string(model);
+  }
+}
+
+TEST_P(FemElementTest, MassesAddUpToTheBodyMass) {
+  FemBody body = make_body();
+  const int dim = GetParam().dim;
+  const double mass = 1000.0;  // default density, unit volume
+  Vector lumped = body.lumped_mass();
+  EXPECT_TRUE((lumped.array() > 0.0).all());
+  EXPECT_NEAR(lumped.sum(), dim * mass, 1e-9 * mass);
+  SparseMatrix M = build_pattern(body);
+  body.consistent_mass(add_into(M));
+  EXPECT_NEAR(M.sum(), dim * mass, 1e-9 * mass);
+}
+
+TEST_P(FemElementTest, CriticalStepShrinksWithTheMesh) {
+  double coarse = make_body(MaterialModel::linear, 0.5).critical_time_step();
+  double fine = make_body(MaterialModel::linear, 0.25).critical_time_step();
+  // The step is of order h / c, with c the dilatational wave speed.
+  const double c = std::sqrt(Lame::from_young_poisson(1e6, 0.3).mu * (2 - 2 * 0.3) / (1 - 2 * 0.3) / 1000.0);
+  EXPECT_GT(coarse, fine);
+  EXPECT_LT(coarse, 0.5 / c);
+  EXPECT_GT(fine, 0.01 * 0.25 / c);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllElements, FemElementTest, ::testing::ValuesIn(all_elements),
+                         [](const auto& info) { return std::string(to_string(info.param.element)); });
+
+TEST(FemLoads, GravityTractionAndPressureIntegrateToTheirTotals) {
+  for (int order : {1, 2}) {
+    Scene s = testing::scene_from_text(R"(
+domain: {box: {min: [0,0,0], max: [1,1,1]}}
+boundary:
+  - select: {plane: {axis: z, at: 1.0}}
+    traction: [10, 0, 0]
+  - select: {plane: {axis: x, at: 1.0}}
+    pressure: 100
+body_force: {gravity: [0, 0, -9.81]}
+)");
+    FemBody body(s, testing::unit_box_mesh(3, order, 0.5));
+    Vector f;
+    body.external_force(0.0, f);
+    Vec3 total = Vec3::Zero();
+    for (Index n = 0; n < body.node_count(); ++n) total += f.segment<3>(3 * n);
+    // traction 10 Pa on a unit face (+x), pressure 100 Pa on the x = 1 face (-x), weight 9810 N (-z)
+    EXPECT_NEAR(total.x(), 10.0 - 100.0, 1e-9) << "order " << order;
+    EXPECT_NEAR(total.y(), 0.0, 1e-9);
+    EXPECT_NEAR(total.z(), -9810.0, 1e-8);
+  }
+}
+
+TEST(FemLoads, ConflictingPrescribedValuesAreRefused) {
+  Scene s = testing::scene_from_text(R"(
+domain: {box: {min: [0,0,0], max: [1,1,1]}}
+boundary:
+  - select: {plane: {axis: x, at: 0.0}}
+    fix: [x]
+  - select: {plane: {axis: x, at: 0.0}}
+    displacement: [0.1, null, null]
+)");
+  EXPECT_THROW(FemBody(s, testing::unit_box_mesh(3, 1, 0.5)), kerf::Error);
+}
+
+TEST(FemInterpolation, ReproducesNodalValuesOfALinearField) {
+  FemBody body(plain_scene(3), testing::unit_box_mesh(3, 2, 0.5));
+  Vector u(body.dof_count());
+  for (Index n = 0; n < body.node_count(); ++n) u.segment<3>(3 * n) = 2.0 * body.mesh().nodes[n];
+  Vec3 x(0.3, 0.6, 0.45);
+  auto p = body.interpolation_at(x);
+  ASSERT_TRUE(p);
+  Vec3 value = Vec3::Zero();
+  for (std::size_t k = 0; k < p->nodes.size(); ++k) value += p->weights[k] * u.segment<3>(3 * p->nodes[k]);
+  EXPECT_LT((value - 2.0 * x).norm(), 1e-12);
+  EXPECT_FALSE(body.interpolation_at(Vec3(2, 2, 2)));
+}
+
+}  // namespace
+}  // namespace kerf

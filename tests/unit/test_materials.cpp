@@ -1,0 +1,105 @@
+// Every material: stress is the derivative of the energy, the tangent is the
+// derivative of the stress (central finite differences), objectivity, rest state.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "problem/material.h"
+
+namespace kerf {
+namespace {
+
+const MaterialModel all_models[] = {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk,
+                                    MaterialModel::neohookean};
+
+Mat3 sample_deformation(int seed, double amplitude) {
+  std::srand(seed);
+  return Mat3::Identity() + amplitude * Mat3::Random();
+}
+
+class MaterialTest : public ::testing::TestWithParam<MaterialModel> {};
+
+TEST_P(MaterialTest, StressIsEnergyDerivative) {
+  MaterialLaw law(GetParam(), 1.0e6, 0.3);
+  for (int seed = 1; seed <= 5; ++seed) {
+    Mat3 F = sample_deformation(seed, 0.2);
+    Mat3 P = law.stress(F);
+    const double h = 1e-6;
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        Mat3 Fp = F, Fm = F;
+        Fp(i, j) += h;
+        Fm(i, j) -= h;
+        double numeric = (law.energy(Fp) - law.energy(Fm)) / (2 * h);
+        EXPECT_NEAR(P(i, j), numeric, 1e-6 * P.norm()) << to_string(GetParam()) << " seed " << seed;
+      }
+  }
+}
+
+TEST_P(MaterialTest, TangentIsStressDerivative) {
+  MaterialLaw law(GetParam(), 1.0e6, 0.3);
+  for (int seed = 1; seed <= 5; ++seed) {
+    Mat3 F = sample_deformation(seed, 0.2);
+    Mat3 P;
+    Mat9 C;
+    law.stress_and_tangent(F, P, C);
+    EXPECT_LT((P - law.stress(F)).norm(), 1e-12 * P.norm());
+    const double h = 1e-6;
+    Mat9 numeric;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        Mat3 Fp = F, Fm = F;
+        Fp(k, l) += h;
+        Fm(k, l) -= h;
+        Mat3 dP = (law.stress(Fp) - law.stress(Fm)) / (2 * h);
+        numeric.col(k + 3 * l) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(dP.data());
+      }
+    EXPECT_LT((C - numeric).norm(), 1e-6 * C.norm()) << to_string(GetParam()) << " seed " << seed;
+    // Hyperelastic tangents are symmetric (major symmetry).
+    EXPECT_LT((C - C.transpose()).norm(), 1e-8 * C.norm());
+  }
+}
+
+TEST_P(MaterialTest, RestStateIsStressFree) {
+  MaterialLaw law(GetParam(), 1.0e6, 0.3);
+  EXPECT_LT(law.stress(Mat3::Identity()).norm(), 1e-9);
+  EXPECT_NEAR(law.energy(Mat3::Identity()), 0.0, 1e-12);
+}
+
+TEST_P(MaterialTest, SmallStrainMatchesLinearElasticity) {
+  MaterialLaw law(GetParam(), 1.0e6, 0.3), linear(MaterialModel::linear, 1.0e6, 0.3);
+  Mat3 F = sample_deformation(7, 1e-6);
+  Mat3 P = law.stress(F), P_linear = linear.stress(F);
+  EXPECT_LT((P - P_linear).norm(), 1e-5 * P_linear.norm());
+}
+
+TEST(Material, NonlinearModelsAreObjective) {
+  Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  Mat3 F = sample_deformation(3, 0.2);
+  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+    MaterialLaw law(m, 1.0e6, 0.3);
+    EXPECT_NEAR(law.energy(R * F), law.energy(F), 1e-10 * law.energy(F)) << to_string(m);
+    EXPECT_LT((law.stress(R * F) - R * law.stress(F)).norm(), 1e-9 * law.stress(F).norm()) << to_string(m);
+  }
+}
+
+TEST(Material, LameParameters) {
+  Lame l = Lame::from_young_poisson(1.0e6, 0.25);
+  EXPECT_NEAR(l.mu, 4.0e5, 1e-6);
+  EXPECT_NEAR(l.lambda, 4.0e5, 1e-6);
+}
+
+TEST(Material, VonMisesOfUniaxialStressIsTheStress) {
+  Mat3 s = Mat3::Zero();
+  s(0, 0) = 250.0;
+  EXPECT_NEAR(von_mises(s), 250.0, 1e-12);
+  Mat3 shear = Mat3::Zero();
+  shear(0, 1) = shear(1, 0) = 100.0;
+  EXPECT_NEAR(von_mises(shear), std::sqrt(3.0) * 100.0, 1e-10);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllModels, MaterialTest, ::testing::ValuesIn(all_models),
+                         [](const auto& info) { return std::string(to_string(info.param)); });
+
+}  // namespace
+}  // namespace kerf

@@ -1,0 +1,114 @@
+// The scene contract: defaults, --set overrides, and refusals that name the
+// file, line, key, value and what was expected.
+#include <gtest/gtest.h>
+
+#include "core/check.h"
+#include "problem/scene_json.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+std::string refusal(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
+  try {
+    testing::scene_from_text(yaml, overrides);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_contains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
+TEST(SceneReader, FillsDefaults) {
+  Scene s = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}");
+  EXPECT_EQ(s.dimension, 3);
+  EXPECT_EQ(s.material.model, MaterialModel::linear);
+  EXPECT_DOUBLE_EQ(s.material.young, 1.0e6);
+  EXPECT_DOUBLE_EQ(s.material.poisson, 0.3);
+  EXPECT_EQ(s.discretization.method, Method::fem);
+  EXPECT_EQ(s.discretization.fem.element, ElementType::tet4);
+  EXPECT_EQ(s.solve.analysis, Analysis::static_analysis);
+  EXPECT_EQ(s.solve.linear_solver, LinearSolverKind::cholmod);
+  EXPECT_EQ(s.output.dir, "results/scene");
+  EXPECT_EQ(s.output.vtk_every, 10);
+}
+
+TEST(SceneReader, NodalDefaultsToExplicitDynamicsAtOneMillisecond) {
+  Scene s = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
+                                     "discretization: {method: nodal}");
+  EXPECT_EQ(s.solve.analysis, Analysis::dynamic);
+  EXPECT_EQ(s.solve.integrator, Integrator::central_difference);
+  EXPECT_DOUBLE_EQ(s.solve.dt, 0.001);
+}
+
+TEST(SceneReader, TwoDimensionalScenesDefaultToTriangles) {
+  Scene s = testing::scene_from_text("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}");
+  EXPECT_EQ(s.discretization.fem.element, ElementType::tri3);
+}
+
+TEST(SceneReader, UnknownKeyNamesLineAndSuggestion) {
+  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial:\n  youngs: 5\n");
+  expect_contains(m, "test.yaml:3:3");
+  expect_contains(m, "unknown key 'youngs'");
+  expect_contains(m, "did you mean 'young'");
+}
+
+TEST(SceneReader, OutOfRangeValueNamesKeyValueAndRange) {
+  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {poisson: 0.5}\n");
+  expect_contains(m, "test.yaml:2:");
+  expect_contains(m, "material.poisson");
+  expect_contains(m, "'0.5'");
+  expect_contains(m, "0 <= poisson < 0.5");
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: -1}\n"), "young > 0");
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {dt: 0}\n"), "dt > 0");
+}
+
+TEST(SceneReader, WrongTypesAndShapesAreRefused) {
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: soft}\n"),
+                  "expected a number, found 'soft'");
+  expect_contains(refusal("domain: {box: {min: [0,0], max: [1,1]}}\n"), "expected a list of 3 numbers");
+  expect_contains(refusal("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\ndiscretization: {fem: {element: tet4}}\n"),
+                  "does not fit dimension 2");
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {integrator: rk4}\n"),
+                  "expected one of implicit-euler | newmark | central-difference");
+  expect_contains(refusal("domain: {mesh: missing.msh}\n"), "does not exist");
+  expect_contains(refusal("material: {young: 1}\n"), "missing 'domain'");
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: w, at: 0}}\n    fix: [x]\n"),
+                  "expected one of x | y | z");
+}
+
+TEST(SceneReader, SetOverridesAnyKeyByDottedPath) {
+  const char* yaml = R"(
+domain: {box: {min: [0,0,0], max: [1,1,1]}}
+boundary:
+  - select: {plane: {axis: x, at: 0.0}}
+    fix: [x, y, z]
+  - select: {plane: {axis: x, at: 1.0}}
+    traction: [0, 0, 1]
+)";
+  Scene s = testing::scene_from_text(yaml, {"material.young=2e6", "boundary.1.traction=[0,500,0]",
+                                            "discretization.meshless.spacing=0.002", "solve.newton.tolerance=1e-10"});
+  EXPECT_DOUBLE_EQ(s.material.young, 2e6);
+  EXPECT_DOUBLE_EQ((*s.boundary[1].traction)[1], 500.0);
+  EXPECT_DOUBLE_EQ(s.discretization.meshless.spacing, 0.002);
+  EXPECT_DOUBLE_EQ(s.solve.newton.tolerance, 1e-10);
+  // A value set on the command line is blamed on the command line.
+  expect_contains(refusal(yaml, {"material.poisson=0.7"}), "set on the command line");
+  expect_contains(refusal(yaml, {"boundary.5.fix=[x]"}), "not an item of an existing list");
+  expect_contains(refusal(yaml, {"material.young"}), "expected KEY=VALUE");
+}
+
+TEST(SceneReader, ResolvedSceneRoundTripsThroughJson) {
+  Scene s = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,2,3]}}\nmaterial: {model: neohookean}");
+  auto j = scene_to_json(s);
+  EXPECT_EQ(j["material"]["model"], "neohookean");
+  EXPECT_EQ(j["domain"]["box"]["max"][2], 3.0);
+  EXPECT_EQ(j["solve"]["linear_solver"], "cholmod");
+  EXPECT_EQ(j["discretization"]["meshless"]["support"], 2.2);
+}
+
+}  // namespace
+}  // namespace kerf

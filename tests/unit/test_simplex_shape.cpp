@@ -1,0 +1,93 @@
+// Lagrange shape functions on simplices: Kronecker property, partition of
+// unity, gradients by finite differences; quadrature exactness; gmsh node order.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "discretization/fem/simplex_quadrature.h"
+#include "discretization/fem/simplex_shape.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+struct Shape {
+  int dim, order;
+};
+
+class SimplexShapeTest : public ::testing::TestWithParam<Shape> {};
+
+TEST_P(SimplexShapeTest, KroneckerAndPartitionOfUnity) {
+  auto [dim, order] = GetParam();
+  int n = simplex_node_count(dim, order);
+  std::vector<double> N(n);
+  for (int a = 0; a < n; ++a) {
+    simplex_shape_values(dim, order, simplex_node_position(dim, order, a), N.data());
+    for (int b = 0; b < n; ++b) EXPECT_NEAR(N[b], a == b ? 1.0 : 0.0, 1e-14);
+  }
+  Vec3 xi(0.21, dim > 1 ? 0.17 : 0.0, dim > 2 ? 0.33 : 0.0);
+  simplex_shape_values(dim, order, xi, N.data());
+  double sum = 0.0;
+  for (double v : N) sum += v;
+  EXPECT_NEAR(sum, 1.0, 1e-14);
+}
+
+TEST_P(SimplexShapeTest, GradientsMatchFiniteDifferences) {
+  auto [dim, order] = GetParam();
+  int n = simplex_node_count(dim, order);
+  Vec3 xi(0.21, dim > 1 ? 0.17 : 0.0, dim > 2 ? 0.33 : 0.0);
+  std::vector<double> dN(n * dim), Np(n), Nm(n);
+  simplex_shape_gradients(dim, order, xi, dN.data());
+  const double h = 1e-6;
+  for (int k = 0; k < dim; ++k) {
+    Vec3 p = xi, m = xi;
+    p[k] += h;
+    m[k] -= h;
+    simplex_shape_values(dim, order, p, Np.data());
+    simplex_shape_values(dim, order, m, Nm.data());
+    for (int a = 0; a < n; ++a) EXPECT_NEAR(dN[a * dim + k], (Np[a] - Nm[a]) / (2 * h), 1e-8);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllSimplices, SimplexShapeTest,
+                         ::testing::Values(Shape{1, 1}, Shape{1, 2}, Shape{2, 1}, Shape{2, 2}, Shape{3, 1},
+                                           Shape{3, 2}));
+
+double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
+
+TEST(SimplexQuadrature, IntegratesMonomialsExactly) {
+  for (int dim = 1; dim <= 3; ++dim)
+    for (int degree = 0; degree <= 6; ++degree) {
+      QuadratureRule rule = simplex_quadrature(dim, degree);
+      for (int a = 0; a <= degree; ++a)
+        for (int b = 0; b <= (dim > 1 ? degree - a : 0); ++b)
+          for (int c = 0; c <= (dim > 2 ? degree - a - b : 0); ++c) {
+            double numeric = 0.0;
+            for (std::size_t q = 0; q < rule.points.size(); ++q) {
+              const Vec3& x = rule.points[q];
+              numeric += rule.weights[q] * std::pow(x[0], a) * std::pow(x[1], b) * std::pow(x[2], c);
+            }
+            // Integral of x^a y^b z^c over the unit simplex.
+            double exact = factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + dim);
+            EXPECT_NEAR(numeric, exact, 1e-14) << "dim " << dim << " degree " << degree << " monomial " << a << b << c;
+          }
+    }
+}
+
+TEST(SimplexShape, MidEdgeNodesOfGmshMeshesSitOnTheirEdges) {
+  for (int dim : {2, 3}) {
+    Mesh mesh = testing::unit_box_mesh(dim, 2, 0.5);
+    auto edges = mid_edge_corners(dim);
+    for (Index c = 0; c < mesh.cell_count(); ++c) {
+      auto n = mesh.cell(c);
+      EXPECT_GT(cell_measure(mesh, c), 0.0);
+      for (std::size_t m = 0; m < edges.size(); ++m) {
+        Vec3 mid = 0.5 * (mesh.nodes[n[edges[m][0]]] + mesh.nodes[n[edges[m][1]]]);
+        EXPECT_LT((mesh.nodes[n[dim + 1 + m]] - mid).norm(), 1e-12) << "cell " << c << " edge " << m;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace kerf
