@@ -32,15 +32,22 @@ void write_all(int fd, const void* data, std::size_t bytes) {
 [[noreturn]] void child_read(const std::string& path, int dimension, int fd) {
   std::string error;
   Mesh mesh;
+  bool read = false;
   try {
     ensure_gmsh_initialized();
     gmsh::open(path);
     extract_gmsh_mesh(dimension, path, mesh);
+    read = true;
   } catch (const std::exception& e) {
     error = e.what();
-    if (error.empty()) error = "gmsh could not read it";
+  } catch (const std::string& message) {  // gmsh throws its messages as strings
+    error = message;
+  } catch (...) {
+    error = "gmsh raised an unknown exception";
   }
-  if (!error.empty()) {
+  if (!error.empty() && error.find_first_not_of(" \n") == std::string::npos) error = "gmsh could not read it";
+  if (!read && error.empty()) error = "gmsh could not read it";
+  if (!read) {
     char status = error_status;
     write_all(fd, &status, 1);
     write_all(fd, error.data(), error.size());

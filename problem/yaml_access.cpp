@@ -97,8 +97,13 @@ void YamlField::out_of_range(const std::string& expected) const {
 
 void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
   if (!node_.IsMap()) fail("expected a map with keys, found " + value_text());
+  std::vector<std::string> seen;
   for (const auto& entry : node_) {
     std::string name = entry.first.as<std::string>();
+    if (std::find(seen.begin(), seen.end(), name) != seen.end())
+      YamlField(entry.first, join_key(key_, name), file_, overridden_)
+          .fail("key '" + name + "' appears twice in the same map; expected each key once");
+    seen.push_back(name);
     bool known = std::any_of(allowed.begin(), allowed.end(),
                              [&](const char* a) { return name == a; });
     if (known) continue;
