@@ -2,6 +2,8 @@
 
 #include <cholmod.h>
 
+#include <cstdio>
+#include <cstdlib>
 #include <sstream>
 
 namespace kerf {
@@ -44,6 +46,9 @@ class CholmodSolver final : public LinearSolver {
       return LinearSolverStatus::failure(why.str());
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
+    if (std::getenv("KERF_CHOLMOD_DEBUG"))
+      std::fprintf(stderr, "cholmod: n %zu lnz %.3g flops %.3g ordering %d supernodal %d\n", A.rows() + 0ul,
+                   common_.lnz, common_.fl, common_.method[common_.selected].ordering, factor_->is_super);
     return LinearSolverStatus::success();
   }
 
