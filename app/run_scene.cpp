@@ -66,6 +66,7 @@ void fill_report(json& summary, const RunReport& report) {
   summary["timing"]["step_ms"] = milliseconds_summary(report.step_seconds);
   summary["timing"]["cut_update_ms"] = {{"median", 0.0}, {"max", 0.0}, {"count", 0}};
   summary["stages"] = report.stages;
+  if (!report.counters.empty()) summary["solver"] = report.counters;
   if (!report.warnings.empty()) summary["warnings"] = report.warnings;
 }
 

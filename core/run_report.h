@@ -2,6 +2,7 @@
 // What a run built and how long each phase took: filled by every layer,
 // written to summary.json, so a test can check that a scene got only what it needs.
 #include <algorithm>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@ struct RunReport {
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
   std::vector<double> step_seconds;  // wall time of each time step (or load step)
   std::vector<std::string> warnings;
+  std::map<std::string, double> counters;  // e.g. factorizations, pcg_iterations
 
   void add_stage(const std::string& stage) {
     if (std::find(stages.begin(), stages.end(), stage) == stages.end()) stages.push_back(stage);

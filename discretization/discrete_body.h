@@ -14,7 +14,9 @@
 namespace kerf {
 
 /// Receives one dense block of a global matrix: `values` is n x n row-major for
-/// n = dofs.size(). May be called from several threads at once: it must be safe.
+/// n = dofs.size(). May be called from several threads at once, but two calls
+/// running at the same time never share a dof (bodies colour their blocks), so
+/// a sink may add without atomics.
 using BlockSink = std::function<void(std::span<const Index> dofs, std::span<const double> values)>;
 
 /// Called once per block that assembly will ever write: the sparsity pattern.

@@ -41,7 +41,7 @@ class StaticStepper final : public Stepper {
     auto residual = [&](const Vector& u, Vector& r, bool tangent) {
       system_.internal_force(u, r, tangent);
       r -= f_ext_;
-      if (tangent) system_.factorize(0.0, 1.0, where.str());
+      if (tangent) system_.update_matrix(0.0, 1.0, where.str());
     };
     result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), s.u, where.str());
     s.t = load;
@@ -101,7 +101,7 @@ class DynamicImplicitStepper : public Stepper {
       if (beta_ != 0.0) r += beta_ * system_.stiffness_times(v);
       if (tangent) {
         auto [cm, ck] = matrix_coefficients(dt);
-        system_.factorize(cm, ck, where);
+        system_.update_matrix(cm, ck, where);
       }
     };
     result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), u, where);
@@ -141,7 +141,7 @@ class DynamicImplicitStepper : public Stepper {
     system_.internal_force(s.u, f_int, true);
     body_.external_force(0.0, f_ext_);
     Vector rhs = f_ext_ - f_int;
-    system_.factorize(1.0, 0.0, std::string(name()) + " initial acceleration");
+    system_.update_matrix(1.0, 0.0, std::string(name()) + " initial acceleration");
     Vector a = Vector::Zero(body_.dof_count());
     system_.free().add_to_full(system_.solve(system_.free().restrict_vector(rhs), "initial acceleration"), a);
     return a;

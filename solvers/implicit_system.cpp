@@ -17,6 +17,8 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   linear.kind = options.linear_solver;
   linear.petsc_options = options.petsc;
   solver_ = make_linear_solver(linear, report_);
+  reuse_factorization_ = !body_.is_linear() && (options.linear_solver == LinearSolverKind::cholmod ||
+                                                options.linear_solver == LinearSolverKind::ldlt);
   if (needs_mass) {
     has_mass_ = true;
     lumped_ = options.mass == MassKind::lumped;
@@ -64,9 +66,9 @@ Vector ImplicitSystem::mass_times(const Vector& x) const {
 
 Vector ImplicitSystem::stiffness_times(const Vector& x) const { return stiffness_ * x; }
 
-void ImplicitSystem::factorize(double cm, double ck, const std::string& where) {
+void ImplicitSystem::update_matrix(double cm, double ck, const std::string& where) {
   if (!stiffness_changed_ && cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_) return;
-  KERF_CHECK(stiffness_assembled_ || ck == 0.0, "internal: factorize before the stiffness was assembled");
+  KERF_CHECK(stiffness_assembled_ || ck == 0.0, "internal: matrix update before the stiffness was assembled");
   {
     ScopedTimer timer(report_.phases, "assembly");
     const Index nnz = stiffness_.nonZeros();
@@ -81,6 +83,18 @@ void ImplicitSystem::factorize(double cm, double ck, const std::string& where) {
     }
     free_.restrict_values(system_);
   }
+  const bool same_coefficients = cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_;
+  stiffness_changed_ = false;
+  last_mass_coefficient_ = cm;
+  last_stiffness_coefficient_ = ck;
+  if (reuse_factorization_ && analyzed_ && same_coefficients) {
+    factor_stale_ = true;
+    return;
+  }
+  factorize_now(where);
+}
+
+void ImplicitSystem::factorize_now(const std::string& where) {
   ScopedTimer timer(report_.phases, "factorize");
   if (!analyzed_) {
     LinearSolverStatus status = solver_->analyze(free_.restricted());
@@ -88,16 +102,51 @@ void ImplicitSystem::factorize(double cm, double ck, const std::string& where) {
     analyzed_ = true;
   }
   report_.add_stage("factorization");
+  report_.counters["factorizations"] += 1;
   LinearSolverStatus status = solver_->factorize(free_.restricted());
   KERF_CHECK(status.ok, where, ": ", status.message);
-  stiffness_changed_ = false;
-  last_mass_coefficient_ = cm;
-  last_stiffness_coefficient_ = ck;
+  factor_stale_ = false;
+}
+
+bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::string& where) {
+  constexpr int max_iterations = 20;
+  constexpr double tolerance = 1e-10;
+  const SparseMatrix& A = free_.restricted();
+  const double b_norm = b.norm();
+  x = Vector::Zero(b.size());
+  if (b_norm == 0.0) return true;
+  Vector r = b, z, p, Ap;
+  auto precondition = [&](const Vector& in, Vector& out) {
+    LinearSolverStatus status = solver_->solve(in, out);
+    KERF_CHECK(status.ok, where, ": ", status.message);
+  };
+  precondition(r, z);
+  p = z;
+  double rz = r.dot(z);
+  for (int k = 1; k <= max_iterations; ++k) {
+    Ap.noalias() = A * p;
+    double pAp = p.dot(Ap);
+    if (!(pAp > 0.0)) return false;  // the stale factor no longer fits: refactorize
+    double alpha = rz / pAp;
+    x += alpha * p;
+    r -= alpha * Ap;
+    report_.counters["pcg_iterations"] += 1;
+    if (r.norm() <= tolerance * b_norm) return true;
+    precondition(r, z);
+    double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  return false;
 }
 
 Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   ScopedTimer timer(report_.phases, "solve");
   Vector x;
+  if (factor_stale_) {
+    if (preconditioned_cg(rhs_free, x, where) && x.allFinite()) return x;
+    factorize_now(where);
+  }
   LinearSolverStatus status = solver_->solve(rhs_free, x);
   KERF_CHECK(status.ok, where, ": ", status.message);
   KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");

@@ -1,8 +1,11 @@
 #pragma once
 // The matrices of an implicit step over all dofs: K(u) and, when asked, the mass
 // M (lumped or consistent, same pattern as K). Forms A = c_M M + c_K K on the
-// free dofs and factorizes it, skipping work that cannot have changed: a linear
-// body assembles K once, and an unchanged A is not factorized again.
+// free dofs and solves with it, skipping work that cannot have changed: a
+// linear body assembles K once, an unchanged A is not factorized again, and
+// with a direct backend a changed A is first solved by conjugate gradients
+// preconditioned with the last factorization, refactorizing only when those
+// need more than a few iterations (the answer is the same to the tolerance).
 #include <memory>
 
 #include "core/run_report.h"
@@ -26,9 +29,10 @@ class ImplicitSystem {
   Vector stiffness_times(const Vector& x) const;
   bool has_mass() const { return has_mass_; }
 
-  /// Factorizes c_M M + c_K K restricted to the free dofs, unless unchanged.
-  void factorize(double mass_coefficient, double stiffness_coefficient, const std::string& where);
-  /// x_f = A_ff^-1 b_f.
+  /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
+  /// factorization can precondition it (same coefficients, direct backend).
+  void update_matrix(double mass_coefficient, double stiffness_coefficient, const std::string& where);
+  /// x_f = A_ff^-1 b_f (relative residual below 1e-10 when solved iteratively).
   Vector solve(const Vector& rhs_free, const std::string& where);
 
  private:
@@ -46,7 +50,14 @@ class ImplicitSystem {
   bool stiffness_changed_ = true;
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
   bool analyzed_ = false;
+  bool reuse_factorization_ = false;  // direct backend: precondition CG with a stale factor
+  bool factor_stale_ = false;         // A changed since the last factorization
   std::unique_ptr<LinearSolver> solver_;
+
+  void factorize_now(const std::string& where);
+  /// Conjugate gradients on A_ff preconditioned by the stale factor; false if
+  /// it needs more than the allowed iterations.
+  bool preconditioned_cg(const Vector& b, Vector& x, const std::string& where);
 };
 
 }  // namespace kerf

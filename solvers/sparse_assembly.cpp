@@ -33,16 +33,31 @@ BlockSink add_into(SparseMatrix& matrix, double scale) {
   double* values = matrix.valuePtr();
   return [=](std::span<const Index> dofs, std::span<const double> block) {
     const std::size_t n = dofs.size();
+    constexpr std::size_t max_block = 512;
+    Index offset[max_block];  // position of column dofs[j] relative to the row start
+    KERF_CHECK(n <= max_block, "a block of ", n, " dofs is larger than the sink handles (", max_block, ")");
     for (std::size_t i = 0; i < n; ++i) {
-      const Index* begin = inner + outer[dofs[i]];
-      const Index* end = inner + outer[dofs[i] + 1];
+      const Index row = dofs[i];
+      const Index* begin = inner + outer[row];
+      const Index* end = inner + outer[row + 1];
+      // Consecutive dofs of one node share their column pattern, so offsets
+      // found for the previous row are tried first; within a row, consecutive
+      // columns usually sit next to each other.
+      const bool same_pattern = i > 0 && row == dofs[i - 1] + 1 &&
+                                outer[row + 1] - outer[row] == outer[row] - outer[row - 1];
       for (std::size_t j = 0; j < n; ++j) {
-        double v = block[i * n + j];
-        if (v == 0.0) continue;
-        const Index* at = std::lower_bound(begin, end, dofs[j]);
-        KERF_DCHECK(at != end && *at == dofs[j]);
-#pragma omp atomic
-        values[at - inner] += scale * v;
+        const Index column = dofs[j];
+        Index at;
+        if (same_pattern && begin[offset[j]] == column)
+          at = offset[j];
+        else if (j > 0 && column == dofs[j - 1] + 1 && begin + offset[j - 1] + 1 < end &&
+                 begin[offset[j - 1] + 1] == column)
+          at = offset[j - 1] + 1;
+        else
+          at = static_cast<Index>(std::lower_bound(begin, end, column) - begin);
+        KERF_DCHECK(begin + at < end && begin[at] == column);
+        offset[j] = at;
+        values[outer[row] + at] += scale * block[i * n + j];
       }
     }
   };

@@ -8,6 +8,7 @@
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
+#include "geometry/mesh_ordering.h"
 #include "geometry/point_location.h"
 #include "problem/selection.h"
 
@@ -41,8 +42,9 @@ struct ElementWork {
 }  // namespace
 
 FemBody::FemBody(const Scene& scene, Mesh mesh)
-    : mesh_(std::move(mesh)),
+    : mesh_((order_for_locality(mesh), std::move(mesh))),
       facets_(boundary_facets(mesh_)),
+      coloring_(color_cells(mesh_)),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
       law_(scene.material),
       density_(scene.material.density) {
@@ -85,22 +87,19 @@ FemBody::FemBody(const Scene& scene, Mesh mesh)
 template <int Dim, int Npc>
 void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const {
   using Work = ElementWork<Dim, Npc>;
-  const Index C = mesh_.cell_count();
-  const int threads = omp_get_max_threads();
-  std::vector<Vector> thread_force(f ? threads : 0);
+  if (f) f->setZero(dof_count());
   double total_energy = 0.0;
+  // Colour by colour: cells of one colour share no node, so their forces and
+  // blocks are written without atomics.
 #pragma omp parallel reduction(+ : total_energy)
   {
-    Vector* local_force = nullptr;
-    if (f) {
-      thread_force[omp_get_thread_num()] = Vector::Zero(dof_count());
-      local_force = &thread_force[omp_get_thread_num()];
-    }
     Work work;
     Mat3 P;
     Mat9 dPdF;
+    for (int color = 0; color < coloring_.color_count(); ++color) {
 #pragma omp for schedule(static)
-    for (Index c = 0; c < C; ++c) {
+    for (Index k = coloring_.start[color]; k < coloring_.start[color + 1]; ++k) {
+      const Index c = coloring_.cells[k];
       auto nodes = mesh_.cell(c);
       Eigen::Matrix<double, Dim, Npc> U;
       for (int a = 0; a < Npc; ++a)
@@ -137,14 +136,11 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
               for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
           }
       }
-      if (local_force)
-        for (int r = 0; r < Work::n; ++r) (*local_force)[work.dofs[r]] += work.force[r];
+      if (f)
+        for (int r = 0; r < Work::n; ++r) (*f)[work.dofs[r]] += work.force[r];
       if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
     }
-  }
-  if (f) {
-    f->setZero(dof_count());
-    for (const Vector& part : thread_force) *f += part;
+    }
   }
   if (energy) *energy = total_energy;
 }

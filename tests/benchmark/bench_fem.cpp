@@ -19,7 +19,7 @@ Scene block_scene(double size, const std::string& solver) {
   std::string yaml = R"(
 name: block
 domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
-material: {model: corotational, young: 1.0e5, poisson: 0.3, density: 1000}
+material: {model: MODEL, young: 1.0e5, poisson: 0.3, density: 1000}
 discretization: {fem: {element: tet4}}
 boundary:
   - select: {plane: {axis: z, at: 0.0}}
@@ -28,6 +28,7 @@ body_force: {gravity: [0, 0, -9.81]}
 solve: {analysis: dynamic, integrator: implicit-euler, dt: 0.01, duration: 10.0, newton: {max_iterations: 1}}
 output: {vtk: false}
 )";
+  yaml.replace(yaml.find("MODEL"), 5, std::getenv("KERF_BENCH_MODEL") ? std::getenv("KERF_BENCH_MODEL") : "corotational");
   return parse_scene(yaml, "benchmark", ".",
                      {"discretization.fem.size=" + std::to_string(size), "solve.linear_solver=" + solver,
                       "solve.petsc=-ksp_type cg -pc_type gamg -ksp_rtol 1e-8"});
