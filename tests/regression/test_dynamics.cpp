@@ -10,6 +10,7 @@
 #include "discretization/body_factory.h"
 #include "problem/scene_reader.h"
 #include "core/check.h"
+#include "solvers/sparse_assembly.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -73,6 +74,17 @@ Table run_bar(const std::vector<std::string>& overrides, const std::string& test
   return read_csv(dir + "/probes.csv");
 }
 
+/// The critical step central differences use, as its run reports it.
+double critical_step_of(const std::vector<std::string>& overrides) {
+  std::vector<std::string> all = overrides;
+  all.push_back("solve.integrator=central-difference");
+  all.push_back("solve.dt=1e-6");
+  all.push_back("solve.duration=1e-6");
+  all.push_back("output.dir=" + testing::output_directory("critical_probe"));
+  json s = run_scene(testing::scene_from_text(bar, all), {"", true}).summary;
+  return s["solver"]["critical_dt_s"].get<double>();
+}
+
 double max_abs(const std::vector<double>& v) {
   double m = 0.0;
   for (double x : v) m = std::max(m, std::abs(x));
@@ -92,10 +104,7 @@ TEST(Dynamics, UndampedNewmarkConservesEnergyOver1000Steps) {
 }
 
 TEST(Dynamics, CentralDifferencesStayBoundedJustBelowTheCriticalStep) {
-  Scene scene = testing::scene_from_text(bar);
-  RunReport report;
-  double critical = make_body(scene, report)->critical_time_step();
-  double dt = 0.98 * critical;
+  double dt = 0.98 * critical_step_of({});
   int steps = 5000;
   Table t = run_bar({"solve.integrator=central-difference", "solve.dt=" + std::to_string(dt),
                      "solve.duration=" + std::to_string(steps * dt), "output.vtk={every: 50}"},
@@ -114,10 +123,42 @@ TEST(Dynamics, CentralDifferencesStayBoundedJustBelowTheCriticalStep) {
   EXPECT_LT(drift / scale, 0.05);
 }
 
+// The estimate is safe (never above 2 / omega_max of the assembled system,
+// found here by plain power iteration) and tight; the element bound is safe.
+TEST(Dynamics, CriticalStepEstimateIsSafeAndTight) {
+  for (const char* element : {"tet4", "tet10"}) {
+    Scene scene = testing::scene_from_text(bar, {std::string("discretization.fem.element=") + element});
+    RunReport report;
+    auto body = make_body(scene, report);
+    SparseMatrix K = testing::assemble_stiffness(*body, Vector::Zero(body->dof_count()));
+    Vector m = body->lumped_mass();
+    FreeDofs free(body->dof_count(), body->dirichlet(0.0));
+    // Power iteration on M^-1/2 K M^-1/2 over the free dofs.
+    Vector s = m.cwiseSqrt().cwiseInverse(), x = Vector::Random(body->dof_count()), y;
+    double omega2 = 0.0;
+    for (int k = 0; k < 2000; ++k) {
+      for (Index d = 0; d < x.size(); ++d)
+        if (free.free_index(d) < 0) x[d] = 0.0;
+      x.normalize();
+      y = s.cwiseProduct(K * s.cwiseProduct(x));
+      for (Index d = 0; d < y.size(); ++d)
+        if (free.free_index(d) < 0) y[d] = 0.0;
+      omega2 = x.dot(y);
+      x = y;
+    }
+    double exact = 2.0 / std::sqrt(omega2);
+    double estimate = critical_step_of({std::string("discretization.fem.element=") + element});
+    double element_bound = body->critical_time_step();
+    std::printf("%s: critical step %.4e s (element bound %.4e s), power iteration %.4e s (ratio %.4f)\n", element,
+                estimate, element_bound, exact, estimate / exact);
+    EXPECT_LE(estimate, exact * (1 + 1e-4));
+    EXPECT_GE(estimate, 0.95 * exact);
+    EXPECT_LE(element_bound, exact * (1 + 1e-6));
+  }
+}
+
 TEST(Dynamics, CentralDifferencesAboveTheCriticalStepAreRefused) {
-  Scene scene = testing::scene_from_text(bar);
-  RunReport report;
-  double critical = make_body(scene, report)->critical_time_step();
+  double critical = critical_step_of({});
   Scene too_large = testing::scene_from_text(
       bar, {"solve.integrator=central-difference", "solve.dt=" + std::to_string(1.05 * critical),
             "output.dir=" + testing::output_directory("central_difference_refused")});

@@ -1,0 +1,54 @@
+#include "solvers/largest_eigenvalue.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace kerf {
+
+EigenvalueBound largest_eigenvalue(const SparseMatrix& K, const Vector& lumped_mass, const FreeDofs& free,
+                                   int max_iterations) {
+  const Index n = free.free_count();
+  const int m = std::min<int>(max_iterations, n);
+  // Symmetric form A = S K S with S = M^-1/2, restricted to the free dofs.
+  Vector scale = Vector::Zero(K.rows());
+  for (Index d : free.free_dofs()) scale[d] = 1.0 / std::sqrt(lumped_mass[d]);
+  auto apply = [&](const Vector& q_free) {
+    Vector full = Vector::Zero(K.rows());
+    for (Index i = 0; i < n; ++i) full[free.free_dofs()[i]] = scale[free.free_dofs()[i]] * q_free[i];
+    Vector y = K * full;
+    Vector out(n);
+    for (Index i = 0; i < n; ++i) out[i] = scale[free.free_dofs()[i]] * y[free.free_dofs()[i]];
+    return out;
+  };
+  Eigen::MatrixXd Q(n, m + 1);
+  std::vector<double> alpha, beta;
+  std::srand(1);
+  Q.col(0) = Vector::Random(n).normalized();
+  EigenvalueBound result;
+  for (int j = 0; j < m; ++j) {
+    Vector w = apply(Q.col(j));
+    alpha.push_back(Q.col(j).dot(w));
+    // Full reorthogonalisation against every Lanczos vector so far (twice is enough).
+    for (int pass = 0; pass < 2; ++pass) w -= Q.leftCols(j + 1) * (Q.leftCols(j + 1).transpose() * w);
+    double b = w.norm();
+    beta.push_back(b);
+    result.iterations = j + 1;
+    // Ritz pair of the tridiagonal matrix.
+    const int k = j + 1;
+    Eigen::MatrixXd T = Eigen::MatrixXd::Zero(k, k);
+    for (int i = 0; i < k; ++i) {
+      T(i, i) = alpha[i];
+      if (i + 1 < k) T(i, i + 1) = T(i + 1, i) = beta[i];
+    }
+    Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(T);
+    double theta = eig.eigenvalues()[k - 1];
+    double residual = b * std::abs(eig.eigenvectors()(k - 1, k - 1));
+    result.ritz_value = theta;
+    result.upper_bound = theta + residual;
+    if (residual <= 1e-6 * theta || b <= 1e-14 * std::abs(theta)) break;
+    Q.col(j + 1) = w / b;
+  }
+  return result;
+}
+
+}  // namespace kerf
