@@ -1,6 +1,7 @@
 #pragma once
 // Shared numeric types: dense vectors in SI units, fixed-size 3-vectors and 3x3 tensors.
 #include <Eigen/Core>
+#include <Eigen/Geometry>  // cross products of Vec3
 #include <cstdint>
 
 namespace kerf {

@@ -8,6 +8,7 @@
 namespace kerf {
 
 Mesh mesh_box(const BoxMeshRequest& r) {
+  PreserveOpenMpThreads keep;
   ensure_gmsh_initialized();
   gmsh::clear();
   gmsh::model::add("kerf_box");

@@ -1,6 +1,7 @@
 #include "geometry/gmsh_session.h"
 
 #include <gmsh.h>
+#include <omp.h>
 
 #include <unordered_map>
 
@@ -8,9 +9,13 @@
 
 namespace kerf {
 
+PreserveOpenMpThreads::PreserveOpenMpThreads() : threads_(omp_get_max_threads()) {}
+PreserveOpenMpThreads::~PreserveOpenMpThreads() { omp_set_num_threads(threads_); }
+
 void ensure_gmsh_initialized() {
   static bool initialized = false;
   if (initialized) return;
+  PreserveOpenMpThreads keep;
   gmsh::initialize();
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);

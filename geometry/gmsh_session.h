@@ -10,6 +10,19 @@ namespace kerf {
 /// Initialises gmsh on first use (terminal output off, one thread).
 void ensure_gmsh_initialized();
 
+/// gmsh sets the process-wide OpenMP thread count from its own options; this
+/// keeps kerf's count across a gmsh call.
+class PreserveOpenMpThreads {
+ public:
+  PreserveOpenMpThreads();
+  ~PreserveOpenMpThreads();
+  PreserveOpenMpThreads(const PreserveOpenMpThreads&) = delete;
+  PreserveOpenMpThreads& operator=(const PreserveOpenMpThreads&) = delete;
+
+ private:
+  int threads_;
+};
+
 /// Fills `mesh` with the nodes and cells of the current gmsh model; `dimension`
 /// picks tetrahedra (3) or triangles (2); throws if the model holds none.
 void extract_gmsh_mesh(int dimension, const std::string& what, Mesh& mesh);

@@ -9,7 +9,7 @@ mkdir -p results
 for scene in scenes/*.yaml; do
   name=$(basename "$scene" .yaml)
   echo "== $name"
-  "$kerf" run "$scene" --out "results/$name"
+  "$kerf" run "$scene" --out "results/scenes/$name"
 done
 echo
-echo "Results: results/<scene>/summary.json, probes.csv, and <scene>.pvd to open in ParaView."
+echo "Results: results/scenes/<scene>/summary.json, probes.csv, and <scene>.pvd to open in ParaView."

@@ -67,9 +67,9 @@ class StaticStepper final : public Stepper {
   NewtonResult result_;
 };
 
-/// One-step implicit schemes written as: a = ca (u - u_n) - cv v_n - cw a_n,
-/// v = v_n + cg (a_n + ...) ...: each scheme supplies a(u) and v(u) and its
-/// matrix coefficients; the Newton loop and reactions are shared.
+/// One-step implicit dynamics: each scheme supplies a(u), v(u) and the
+/// coefficients of dr/du; the residual M (a + alpha v) + beta K v + f_int - f_ext,
+/// the Newton loop and the reactions are shared.
 class DynamicImplicitStepper : public Stepper {
  public:
   DynamicImplicitStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)

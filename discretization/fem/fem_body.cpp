@@ -41,8 +41,15 @@ struct ElementWork {
 
 }  // namespace
 
+namespace {
+Mesh ordered_for_locality(Mesh mesh) {
+  order_for_locality(mesh);
+  return mesh;
+}
+}  // namespace
+
 FemBody::FemBody(const Scene& scene, Mesh mesh)
-    : mesh_((order_for_locality(mesh), std::move(mesh))),
+    : mesh_(ordered_for_locality(std::move(mesh))),
       facets_(boundary_facets(mesh_)),
       coloring_(color_cells(mesh_)),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
@@ -98,48 +105,48 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
     Mat9 dPdF;
     for (int color = 0; color < coloring_.color_count(); ++color) {
 #pragma omp for schedule(static)
-    for (Index k = coloring_.start[color]; k < coloring_.start[color + 1]; ++k) {
-      const Index c = coloring_.cells[k];
-      auto nodes = mesh_.cell(c);
-      Eigen::Matrix<double, Dim, Npc> U;
-      for (int a = 0; a < Npc; ++a)
-        for (int i = 0; i < Dim; ++i) {
-          work.dofs[Dim * a + i] = Dim * nodes[a] + i;
-          U(i, a) = u[Dim * nodes[a] + i];
-        }
-      work.force.setZero();
-      if (sink) work.stiffness.setZero();
-      for (int q = 0; q < nqp_; ++q) {
-        const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
-        Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
-        const double w = wdet_[point];
-        Mat3 F = Mat3::Identity();
-        F.template topLeftCorner<Dim, Dim>() += U * G;
-        if (sink)
-          law_.stress_and_tangent(F, P, dPdF);
-        else
-          P = law_.stress(F);
-        if (energy) total_energy += w * law_.energy(F);
-        Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
+      for (Index slot = coloring_.start[color]; slot < coloring_.start[color + 1]; ++slot) {
+        const Index c = coloring_.cells[slot];
+        auto nodes = mesh_.cell(c);
+        Eigen::Matrix<double, Dim, Npc> U;
         for (int a = 0; a < Npc; ++a)
-          for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
-        if (!sink) continue;
-        for (int b = 0; b < Npc; ++b)
-          for (int k = 0; k < Dim; ++k) {
-            // T(i, j) = sum_l dP(i,j)/dF(k,l) G(b,l)
-            Eigen::Matrix<double, Dim, Dim> T = Eigen::Matrix<double, Dim, Dim>::Zero();
-            for (int l = 0; l < Dim; ++l)
-              for (int j = 0; j < Dim; ++j)
-                for (int i = 0; i < Dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * G(b, l);
-            Eigen::Matrix<double, Dim, Npc> column = T * G.transpose();
-            for (int a = 0; a < Npc; ++a)
-              for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
+          for (int i = 0; i < Dim; ++i) {
+            work.dofs[Dim * a + i] = Dim * nodes[a] + i;
+            U(i, a) = u[Dim * nodes[a] + i];
           }
+        work.force.setZero();
+        if (sink) work.stiffness.setZero();
+        for (int q = 0; q < nqp_; ++q) {
+          const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
+          Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
+          const double w = wdet_[point];
+          Mat3 F = Mat3::Identity();
+          F.template topLeftCorner<Dim, Dim>() += U * G;
+          if (sink)
+            law_.stress_and_tangent(F, P, dPdF);
+          else
+            P = law_.stress(F);
+          if (energy) total_energy += w * law_.energy(F);
+          Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
+          for (int a = 0; a < Npc; ++a)
+            for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
+          if (!sink) continue;
+          for (int b = 0; b < Npc; ++b)
+            for (int k = 0; k < Dim; ++k) {
+              // T(i, j) = sum_l dP(i,j)/dF(k,l) G(b,l)
+              Eigen::Matrix<double, Dim, Dim> T = Eigen::Matrix<double, Dim, Dim>::Zero();
+              for (int l = 0; l < Dim; ++l)
+                for (int j = 0; j < Dim; ++j)
+                  for (int i = 0; i < Dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * G(b, l);
+              Eigen::Matrix<double, Dim, Npc> column = T * G.transpose();
+              for (int a = 0; a < Npc; ++a)
+                for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
+            }
+        }
+        if (f)
+          for (int r = 0; r < Work::n; ++r) (*f)[work.dofs[r]] += work.force[r];
+        if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
       }
-      if (f)
-        for (int r = 0; r < Work::n; ++r) (*f)[work.dofs[r]] += work.force[r];
-      if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
-    }
     }
   }
   if (energy) *energy = total_energy;

@@ -1,0 +1,116 @@
+// Geometry pieces on real gmsh meshes: orientation, boundary facets, colouring,
+// locality ordering, point location, refine boxes, and gmsh leaving kerf's
+// OpenMP thread count alone.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <set>
+
+#include "geometry/box_mesher.h"
+#include "geometry/cell_coloring.h"
+#include "geometry/mesh_ordering.h"
+#include "geometry/point_location.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+double total_measure(const Mesh& mesh) {
+  double v = 0.0;
+  for (Index c = 0; c < mesh.cell_count(); ++c) v += cell_measure(mesh, c);
+  return v;
+}
+
+TEST(Geometry, GmshLeavesTheOpenMpThreadCountAlone) {
+  omp_set_num_threads(2);
+  testing::unit_box_mesh(3, 1, 0.5);
+  EXPECT_EQ(omp_get_max_threads(), 2);
+}
+
+TEST(Geometry, BoxMeshesArePositiveAndFillTheBox) {
+  for (int dim : {2, 3})
+    for (int order : {1, 2}) {
+      Mesh mesh = testing::unit_box_mesh(dim, order, 0.3);
+      for (Index c = 0; c < mesh.cell_count(); ++c) ASSERT_GT(cell_measure(mesh, c), 0.0);
+      EXPECT_NEAR(total_measure(mesh), 1.0, 1e-12) << dim << "D order " << order;
+    }
+}
+
+TEST(Geometry, BoundaryFacetsCoverTheSurfaceWithOutwardNormals) {
+  Mesh mesh = testing::unit_box_mesh(3, 1, 0.3);
+  BoundaryFacets facets = boundary_facets(mesh);
+  double area = 0.0;
+  for (Index f = 0; f < facets.count(); ++f) {
+    auto n = facets.facet(f);
+    Vec3 a = mesh.nodes[n[0]], b = mesh.nodes[n[1]], c = mesh.nodes[n[2]];
+    Vec3 normal = 0.5 * (b - a).cross(c - a);
+    area += normal.norm();
+    // Outward: the normal points away from the box centre.
+    Vec3 centre = (a + b + c) / 3.0;
+    EXPECT_GT(normal.dot(centre - Vec3(0.5, 0.5, 0.5)), 0.0);
+  }
+  EXPECT_NEAR(area, 6.0, 1e-12);
+}
+
+TEST(Geometry, CellsOfOneColourShareNoNode) {
+  Mesh mesh = testing::unit_box_mesh(3, 2, 0.25);
+  CellColoring coloring = color_cells(mesh);
+  EXPECT_EQ(static_cast<Index>(coloring.cells.size()), mesh.cell_count());
+  std::set<Index> every(coloring.cells.begin(), coloring.cells.end());
+  EXPECT_EQ(static_cast<Index>(every.size()), mesh.cell_count());
+  for (int k = 0; k < coloring.color_count(); ++k) {
+    std::set<Index> nodes;
+    for (Index i = coloring.start[k]; i < coloring.start[k + 1]; ++i)
+      for (Index n : mesh.cell(coloring.cells[i])) ASSERT_TRUE(nodes.insert(n).second) << "colour " << k;
+  }
+}
+
+TEST(Geometry, LocalityOrderingKeepsTheMeshAndNarrowsTheBandwidth) {
+  Mesh mesh = testing::unit_box_mesh(3, 1, 0.15);
+  auto bandwidth = [](const Mesh& m) {
+    Index widest = 0;
+    for (Index c = 0; c < m.cell_count(); ++c) {
+      auto n = m.cell(c);
+      widest = std::max(widest, *std::max_element(n.begin(), n.end()) - *std::min_element(n.begin(), n.end()));
+    }
+    return widest;
+  };
+  Mesh ordered = mesh;
+  order_for_locality(ordered);
+  EXPECT_NEAR(total_measure(ordered), total_measure(mesh), 1e-12);
+  for (Index c = 0; c < ordered.cell_count(); ++c) ASSERT_GT(cell_measure(ordered, c), 0.0);
+  EXPECT_LT(bandwidth(ordered), bandwidth(mesh) / 2);
+}
+
+TEST(Geometry, PointLocationFindsTheCellAndItsReferenceCoordinates) {
+  Mesh mesh = testing::unit_box_mesh(3, 1, 0.3);
+  for (const Vec3& x : {Vec3(0.31, 0.52, 0.77), Vec3(0, 0, 0), Vec3(1, 1, 1), Vec3(0.5, 0.0, 0.5)}) {
+    auto at = locate_point(mesh, x, 1e-9);
+    ASSERT_TRUE(at) << x.transpose();
+    auto n = mesh.cell(at->cell);
+    const Vec3& xi = at->local;
+    Vec3 back = (1 - xi.sum()) * mesh.nodes[n[0]] + xi.x() * mesh.nodes[n[1]] + xi.y() * mesh.nodes[n[2]] +
+                xi.z() * mesh.nodes[n[3]];
+    EXPECT_LT((back - x).norm(), 1e-12);
+  }
+  EXPECT_FALSE(locate_point(mesh, Vec3(1.1, 0.5, 0.5), 1e-3));
+  EXPECT_TRUE(locate_point(mesh, Vec3(1.0005, 0.5, 0.5), 1e-3));
+}
+
+TEST(Geometry, RefineBoxesMakeTheMeshFinerWhereAsked) {
+  BoxMeshRequest coarse;
+  coarse.min = Vec3::Zero();
+  coarse.max = Vec3::Ones();
+  coarse.size = 0.25;
+  BoxMeshRequest refined = coarse;
+  refined.refine.push_back({Vec3(0, 0, 0.8), Vec3(1, 1, 1), 0.06});
+  Mesh a = mesh_box(coarse), b = mesh_box(refined);
+  auto nodes_in_top = [](const Mesh& m) {
+    return std::count_if(m.nodes.begin(), m.nodes.end(), [](const Vec3& p) { return p.z() > 0.8; });
+  };
+  EXPECT_GT(nodes_in_top(b), 5 * nodes_in_top(a));
+  EXPECT_NEAR(total_measure(b), 1.0, 1e-12);
+}
+
+}  // namespace
+}  // namespace kerf
