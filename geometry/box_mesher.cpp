@@ -8,7 +8,7 @@
 namespace kerf {
 
 Mesh mesh_box(const BoxMeshRequest& r) {
-  PreserveOpenMpThreads keep;
+  SerialGmshScope serial;
   ensure_gmsh_initialized();
   gmsh::clear();
   gmsh::model::add("kerf_box");

@@ -9,13 +9,13 @@
 
 namespace kerf {
 
-PreserveOpenMpThreads::PreserveOpenMpThreads() : threads_(omp_get_max_threads()) {}
-PreserveOpenMpThreads::~PreserveOpenMpThreads() { omp_set_num_threads(threads_); }
+SerialGmshScope::SerialGmshScope() : threads_(omp_get_max_threads()) { omp_set_num_threads(1); }
+SerialGmshScope::~SerialGmshScope() { omp_set_num_threads(threads_); }
 
 void ensure_gmsh_initialized() {
   static bool initialized = false;
   if (initialized) return;
-  PreserveOpenMpThreads keep;
+  SerialGmshScope serial;
   gmsh::initialize();
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);

@@ -10,14 +10,16 @@ namespace kerf {
 /// Initialises gmsh on first use (terminal output off, one thread).
 void ensure_gmsh_initialized();
 
-/// gmsh sets the process-wide OpenMP thread count from its own options; this
-/// keeps kerf's count across a gmsh call.
-class PreserveOpenMpThreads {
+/// gmsh's meshers are not deterministic on several threads (node positions and
+/// cells change from run to run), and gmsh sets the process-wide OpenMP thread
+/// count: inside this scope gmsh runs on one thread, and kerf's count is back
+/// afterwards.
+class SerialGmshScope {
  public:
-  PreserveOpenMpThreads();
-  ~PreserveOpenMpThreads();
-  PreserveOpenMpThreads(const PreserveOpenMpThreads&) = delete;
-  PreserveOpenMpThreads& operator=(const PreserveOpenMpThreads&) = delete;
+  SerialGmshScope();
+  ~SerialGmshScope();
+  SerialGmshScope(const SerialGmshScope&) = delete;
+  SerialGmshScope& operator=(const SerialGmshScope&) = delete;
 
  private:
   int threads_;

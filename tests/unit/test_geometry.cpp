@@ -27,6 +27,17 @@ TEST(Geometry, GmshLeavesTheOpenMpThreadCountAlone) {
   EXPECT_EQ(omp_get_max_threads(), 2);
 }
 
+TEST(Geometry, MeshingIsDeterministic) {
+  omp_set_num_threads(2);
+  Mesh first = testing::unit_box_mesh(3, 2, 0.2);
+  for (int repeat = 0; repeat < 3; ++repeat) {
+    Mesh again = testing::unit_box_mesh(3, 2, 0.2);
+    ASSERT_EQ(again.cells, first.cells);
+    ASSERT_EQ(again.nodes.size(), first.nodes.size());
+    for (std::size_t i = 0; i < first.nodes.size(); ++i) ASSERT_EQ(again.nodes[i], first.nodes[i]);
+  }
+}
+
 TEST(Geometry, BoxMeshesArePositiveAndFillTheBox) {
   for (int dim : {2, 3})
     for (int order : {1, 2}) {
