@@ -1,6 +1,8 @@
 // kerf: soft-tissue cutting simulation, FEM against enriched meshless methods.
 #include "app/cli.h"
+#include "core/openmp_limit.h"
 
 int main(int argc, char** argv) {
+  kerf::limit_openmp_threads_to_cores(argv);
   return kerf::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

@@ -3,12 +3,13 @@
 #include <gmsh.h>
 
 #include "core/check.h"
+#include "core/thread_scope.h"
 #include "geometry/gmsh_session.h"
 
 namespace kerf {
 
 Mesh mesh_box(const BoxMeshRequest& r) {
-  SerialGmshScope serial;
+  SingleThreadScope serial;  // gmsh meshes differently from run to run on several threads
   ensure_gmsh_initialized();
   gmsh::clear();
   gmsh::model::add("kerf_box");

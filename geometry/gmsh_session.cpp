@@ -1,21 +1,18 @@
 #include "geometry/gmsh_session.h"
 
 #include <gmsh.h>
-#include <omp.h>
 
 #include <unordered_map>
 
 #include "core/check.h"
+#include "core/thread_scope.h"
 
 namespace kerf {
-
-SerialGmshScope::SerialGmshScope() : threads_(omp_get_max_threads()) { omp_set_num_threads(1); }
-SerialGmshScope::~SerialGmshScope() { omp_set_num_threads(threads_); }
 
 void ensure_gmsh_initialized() {
   static bool initialized = false;
   if (initialized) return;
-  SerialGmshScope serial;
+  SingleThreadScope serial;  // gmsh sets the OpenMP thread count itself
   gmsh::initialize();
   gmsh::option::setNumber("General.Terminal", 0);
   gmsh::option::setNumber("General.Verbosity", 1);

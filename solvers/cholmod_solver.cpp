@@ -6,6 +6,8 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "core/thread_scope.h"
+
 namespace kerf {
 namespace {
 
@@ -27,6 +29,7 @@ class CholmodSolver final : public LinearSolver {
   std::string name() const override { return "cholmod"; }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
+    SingleThreadScope single;
     cholmod_sparse view = wrap(pattern);
     if (factor_) cholmod_free_factor(&factor_, &common_);
     factor_ = cholmod_analyze(&view, &common_);
@@ -36,6 +39,7 @@ class CholmodSolver final : public LinearSolver {
 
   LinearSolverStatus factorize(const SparseMatrix& A) override {
     if (!factor_) return LinearSolverStatus::failure("cholmod: factorize() before analyze()");
+    SingleThreadScope single;  // the supernodes' BLAS calls are too small to gain from threads
     cholmod_sparse view = wrap(A);
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF) {
@@ -53,6 +57,7 @@ class CholmodSolver final : public LinearSolver {
   }
 
   LinearSolverStatus solve(const Vector& b, Vector& x) override {
+    SingleThreadScope single;
     cholmod_dense rhs{};
     rhs.nrow = static_cast<size_t>(b.size());
     rhs.ncol = 1;

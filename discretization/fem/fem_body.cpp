@@ -308,25 +308,20 @@ double FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.
   const int dim = mesh_.dimension, n = npc_ * dim;
-  Vector zero = Vector::Zero(dof_count());
-  double omega2_max = 0.0;
-  std::vector<Eigen::MatrixXd> blocks(mesh_.cell_count());
-  ElementSink collect = [&](Index c, std::span<const Index>, std::span<const double> values) {
-    blocks[c] = Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
-        values.data(), n, n);
-  };
-  loop(zero, &collect, nullptr, nullptr);
-  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+  std::vector<double> omega2(mesh_.cell_count(), 0.0);
+  ElementSink element_frequency = [&](Index c, std::span<const Index>, std::span<const double> values) {
     Eigen::MatrixXd M = element_scalar_mass(c);
     Eigen::VectorXd lumped = M.diagonal() * (M.sum() / M.diagonal().sum());
     Eigen::VectorXd s(n);
     for (int a = 0; a < npc_; ++a)
       for (int i = 0; i < dim; ++i) s[dim * a + i] = 1.0 / std::sqrt(lumped[a]);
-    Eigen::MatrixXd A = s.asDiagonal() * blocks[c] * s.asDiagonal();
+    Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> K(values.data(), n, n);
+    Eigen::MatrixXd A = s.asDiagonal() * K * s.asDiagonal();
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
-    omega2_max = std::max(omega2_max, eig.eigenvalues().maxCoeff());
-  }
-  return 2.0 / std::sqrt(omega2_max);
+    omega2[c] = eig.eigenvalues().maxCoeff();
+  };
+  loop(Vector::Zero(dof_count()), &element_frequency, nullptr, nullptr);
+  return 2.0 / std::sqrt(*std::max_element(omega2.begin(), omega2.end()));
 }
 
 std::vector<Index> FemBody::select_nodes(const Selection& selection) const {

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/openmp_limit.h"
 #include "discretization/body_factory.h"
 #include "problem/scene_reader.h"
 #include "solvers/linear_solver.h"
@@ -115,4 +116,11 @@ BENCHMARK(BM_CholmodFactorization)->DenseRange(0, 2)->Unit(benchmark::kMilliseco
 }  // namespace
 }  // namespace kerf
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  kerf::limit_openmp_threads_to_cores(argv);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
