@@ -55,6 +55,14 @@ TEST(StaticScenes, PlateInTensionHasTheExactPlaneStrainSolution) {
   EXPECT_NEAR(s["probes"]["support"]["reaction"][0].get<double>(), -sigma * H, 1e-9);
 }
 
+TEST(StaticScenes, MeshFileSceneCarriesItsWeight) {
+  json s = run("scenes/cube_from_mesh.yaml", {"output.vtk=false"}, "cube_from_mesh");
+  ASSERT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["counts"]["nodes"], 337);
+  EXPECT_NEAR(s["probes"]["base"]["reaction"][2].get<double>(), 1000 * 9.81 * 0.02 * 0.02 * 0.02, 1e-12);
+  EXPECT_LT(s["probes"]["top"]["displacement"][2].get<double>(), 0.0);
+}
+
 TEST(StaticScenes, LinearCholmodRunBuildsNoMassAndNoPetsc) {
   json s = run("scenes/cantilever.yaml", {"discretization.fem.element=tet4", "discretization.fem.size=0.01",
                                           "output.vtk=false"}, "stages");
