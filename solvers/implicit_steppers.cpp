@@ -31,8 +31,9 @@ class StaticStepper final : public Stepper {
     s.a = Vector::Zero(body_.dof_count());
   }
 
-  void advance(SolverState& s, double dt) override {
-    const double load = std::min(1.0, s.t + dt);
+  void advance(SolverState& s, double) override {
+    // From the step count, so the last step is exactly the full load.
+    const double load = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
     body_.external_force(load, f_ext_);
     f_ext_ *= load;
     apply_dirichlet(body_.dirichlet(load), load, s.u);
@@ -84,7 +85,7 @@ class DynamicImplicitStepper : public Stepper {
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
     apply_dirichlet(body_.dirichlet(0.0), 1.0, s.u);
-    s.a = initial_acceleration(s);
+    s.a = uses_acceleration() ? initial_acceleration(s) : Vector::Zero(n);
   }
 
   void advance(SolverState& s, double dt) override {
@@ -134,8 +135,10 @@ class DynamicImplicitStepper : public Stepper {
   virtual void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const = 0;
   /// dr/du = c_M M + c_K K.
   virtual std::pair<double, double> matrix_coefficients(double dt) const = 0;
+  /// Whether a(u) depends on the previous acceleration (then a0 is solved for).
+  virtual bool uses_acceleration() const = 0;
 
-  /// M a0 = f_ext - f_int(u0) - C v0 on the free dofs (zero at constrained dofs).
+  /// M a0 = f_ext - f_int(u0) on the free dofs (v0 = 0; zero at constrained dofs).
   Vector initial_acceleration(const SolverState& s) {
     Vector f_int;
     system_.internal_force(s.u, f_int, true);
@@ -161,6 +164,7 @@ class ImplicitEulerStepper final : public DynamicImplicitStepper {
 
  protected:
   const char* name() const override { return "implicit Euler"; }
+  bool uses_acceleration() const override { return false; }
   void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const override {
     v = (u - s.u) / dt;
     a = (v - s.v) / dt;
@@ -176,6 +180,7 @@ class NewmarkStepper final : public DynamicImplicitStepper {
 
  protected:
   const char* name() const override { return "Newmark"; }
+  bool uses_acceleration() const override { return true; }
   // Average acceleration: beta = 1/4, gamma = 1/2.
   void kinematics(const SolverState& s, double dt, const Vector& u, Vector& a, Vector& v) const override {
     a = 4.0 / (dt * dt) * (u - s.u - dt * s.v) - s.a;
