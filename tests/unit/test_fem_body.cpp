@@ -153,6 +153,28 @@ TEST_P(FemElementTest, CriticalStepShrinksWithTheMesh) {
 INSTANTIATE_TEST_SUITE_P(AllElements, FemElementTest, ::testing::ValuesIn(all_elements),
                          [](const auto& info) { return std::string(to_string(info.param.element)); });
 
+// A large rigid rotation strains nothing: the nonlinear materials see no force,
+// while small-strain linear elasticity reports spurious ones.
+TEST(FemObjectivity, RigidRotationIsForceFreeExceptForLinearElasticity) {
+  Mat3 R = Eigen::AngleAxisd(0.8, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
+  for (MaterialModel model :
+       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+    FemBody body(plain_scene(3, model), testing::unit_box_mesh(3, 2, 0.5));
+    Vector u(body.dof_count());
+    for (Index n = 0; n < body.node_count(); ++n) u.segment<3>(3 * n) = (R - Mat3::Identity()) * body.mesh().nodes[n];
+    Vector f;
+    body.internal_force(u, f);
+    // Scale: the force a 1% strain would cause, E * 0.01 * (unit area).
+    const double scale = 1e6 * 0.01;
+    if (model == MaterialModel::linear)
+      EXPECT_GT(f.norm(), scale) << "linear elasticity should not be rotation invariant";
+    else
+      EXPECT_LT(f.norm(), 1e-8 * scale) << to_string(model);
+    // Against the energy of a 1% strain, 0.5 E 0.01^2 (unit volume).
+    if (model != MaterialModel::linear) EXPECT_LT(body.strain_energy(u), 1e-12 * 50.0) << to_string(model);
+  }
+}
+
 TEST(FemLoads, GravityTractionAndPressureIntegrateToTheirTotals) {
   for (int order : {1, 2}) {
     Scene s = testing::scene_from_text(R"(
