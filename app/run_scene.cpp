@@ -67,7 +67,6 @@ void fill_report(json& summary, const RunReport& report) {
   summary["timing"]["cut_update_ms"] = {{"median", 0.0}, {"max", 0.0}, {"count", 0}};
   summary["stages"] = report.stages;
   if (!report.counters.empty()) summary["solver"] = report.counters;
-  if (!report.warnings.empty()) summary["warnings"] = report.warnings;
 }
 
 }  // namespace
@@ -146,6 +145,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
       double step_start = now_seconds();
       stepper->advance(state, dt);
       report.step_seconds.push_back(now_seconds() - step_start);
+      report.counters["newton_iterations"] += stepper->last_iterations();
       if (probes.needs_energy()) {
         // Trapezoidal work of the external loads (static: scaled by the load factor).
         body->external_force(state.t, f_after);

@@ -14,7 +14,6 @@ struct RunReport {
   PhaseTimes phases;                 // setup, assembly, factorize, solve, cut_update, output
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
   std::vector<double> step_seconds;  // wall time of each time step (or load step)
-  std::vector<std::string> warnings;
   std::map<std::string, double> counters;  // e.g. factorizations, pcg_iterations
 
   void add_stage(const std::string& stage) {

@@ -19,7 +19,6 @@ struct Mesh {
   std::vector<Vec3> nodes; // reference positions (m), N
   std::vector<Index> cells;  // C * nodes_per_cell()
 
-  int corners_per_cell() const { return dimension == 3 ? 4 : 3; }
   int nodes_per_cell() const;
   Index cell_count() const { return static_cast<Index>(cells.size() / nodes_per_cell()); }
   Index node_count() const { return static_cast<Index>(nodes.size()); }

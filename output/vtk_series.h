@@ -14,7 +14,6 @@ class VtkSeries {
   VtkSeries(std::string directory, std::string name);
   /// Writes the snapshot at `time` (s); returns the .vtu path.
   std::string write(const BodySnapshot& snapshot, double time);
-  const std::string& collection_path() const { return pvd_path_; }
 
  private:
   std::string directory_, name_, pvd_path_;

@@ -149,6 +149,7 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   }
   LinearSolverStatus status = solver_->solve(rhs_free, x);
   KERF_CHECK(status.ok, where, ": ", status.message);
+  report_.counters["linear_iterations"] += solver_->last_iterations();
   KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
   return x;
 }

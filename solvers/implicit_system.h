@@ -27,7 +27,6 @@ class ImplicitSystem {
   /// M x and K x over all dofs (K: the last assembled).
   Vector mass_times(const Vector& x) const;
   Vector stiffness_times(const Vector& x) const;
-  bool has_mass() const { return has_mass_; }
 
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).

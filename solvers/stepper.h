@@ -23,7 +23,7 @@ class Stepper {
   virtual double kinetic_energy(const SolverState& state) const = 0;
   /// f_int(u) + M a + C v - f_ext over all dofs: the support reactions at constrained dofs (N).
   virtual Vector reaction(const SolverState& state) = 0;
-  /// Newton iterations of the last step (0 for explicit).
+  /// Linear solves Newton made in the last step (0 for explicit).
   virtual int last_iterations() const { return 0; }
   /// The time step the run uses (s); static: 1 / load_steps.
   virtual double time_step() const = 0;
