@@ -36,7 +36,8 @@ class StaticStepper final : public Stepper {
     const double load = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
     body_.external_force(load, f_ext_);
     f_ext_ *= load;
-    apply_dirichlet(body_.dirichlet(load), load, s.u);
+    std::vector<DirichletDof> prescribed = body_.dirichlet(load);
+    for (DirichletDof& d : prescribed) d.value *= load;
     std::ostringstream where;
     where << "static load step " << s.step + 1 << " (load factor " << load << ")";
     auto residual = [&](const Vector& u, Vector& r, bool tangent) {
@@ -44,7 +45,7 @@ class StaticStepper final : public Stepper {
       r -= f_ext_;
       if (tangent) system_.update_matrix(0.0, 1.0, where.str());
     };
-    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), s.u, where.str());
+    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
     s.t = load;
     ++s.step;
   }
@@ -92,7 +93,6 @@ class DynamicImplicitStepper : public Stepper {
     const double t1 = s.t + dt;
     body_.external_force(t1, f_ext_);
     Vector u = s.u;
-    apply_dirichlet(body_.dirichlet(t1), 1.0, u);
     const std::string where = step_name(name(), s.step + 1, t1);
     Vector a, v;
     auto residual = [&](const Vector& x, Vector& r, bool tangent) {
@@ -105,7 +105,7 @@ class DynamicImplicitStepper : public Stepper {
         system_.update_matrix(cm, ck, where);
       }
     };
-    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), u, where);
+    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), body_.dirichlet(t1), u, where);
     kinematics(s, dt, u, a, v);
     s.u = std::move(u);
     s.v = std::move(v);

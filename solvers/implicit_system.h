@@ -27,6 +27,8 @@ class ImplicitSystem {
   /// M x and K x over all dofs (K: the last assembled).
   Vector mass_times(const Vector& x) const;
   Vector stiffness_times(const Vector& x) const;
+  /// A x over all dofs, with A as last formed by update_matrix.
+  Vector system_times(const Vector& x) const { return system_ * x; }
 
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).

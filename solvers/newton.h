@@ -18,10 +18,14 @@ struct NewtonResult {
   double residual = 0.0;   // final free-dof residual norm (N)
 };
 
-/// Solves r(u) = 0 for the free dofs of u (the constrained ones keep their values).
+/// Solves r(u) = 0 with the constrained dofs of u moved to `prescribed`. The
+/// first iteration takes the jump of the prescribed values into the linear
+/// solve (A_ff du_f = -(r_f + A_fc du_c)), so it spreads into the body instead
+/// of crushing the cells next to the moved boundary.
 /// `force_scale` (N) sets the convergence reference together with the first residual.
 /// Throws naming `where` on NaN, a failed solve, or no convergence.
 NewtonResult newton_solve(ImplicitSystem& system, const NewtonOptions& options, const ResidualFunction& residual,
-                          double force_scale, Vector& u, const std::string& where);
+                          double force_scale, const std::vector<DirichletDof>& prescribed, Vector& u,
+                          const std::string& where);
 
 }  // namespace kerf

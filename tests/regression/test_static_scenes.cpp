@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "app/run_scene.h"
+#include "problem/material.h"
 #include "problem/scene_reader.h"
 #include "core/check.h"
 #include "support/test_support.h"
@@ -26,6 +27,12 @@ json run(const std::string& scene_file, std::vector<std::string> overrides, cons
 
 // Euler-Bernoulli bending plus Timoshenko shear deflection of a cantilever
 // of rectangular section b x h under its own weight q = rho g b h.
+MaterialModel material_model(const std::string& name) {
+  for (MaterialModel m : {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean})
+    if (name == to_string(m)) return m;
+  throw Error("unknown material " + name);
+}
+
 double beam_tip_deflection(double E, double nu, double rho, double g, double L, double b, double h) {
   double q = rho * g * b * h, I = b * h * h * h / 12.0, G = E / (2 * (1 + nu));
   double kappa = 10 * (1 + nu) / (12 + 11 * nu);
@@ -53,6 +60,53 @@ TEST(StaticScenes, PlateInTensionHasTheExactPlaneStrainSolution) {
   EXPECT_NEAR(corner[0].get<double>(), (1 - nu * nu) * sigma * L / E, 1e-10 * sigma * L / E);
   EXPECT_NEAR(corner[1].get<double>(), -nu * (1 + nu) * sigma * H / E, 1e-10 * sigma * L / E);
   EXPECT_NEAR(s["probes"]["support"]["reaction"][0].get<double>(), -sigma * H, 1e-9);
+}
+
+// A bar on rollers stretched by 50% through a prescribed displacement: the
+// exact solution is a homogeneous uniaxial stretch, which every element
+// reproduces exactly (a nonlinear patch test). The reference comes from the
+// material law: the lateral stretch l2 with P22(diag(l1, l2, l2)) = 0.
+TEST(StaticScenes, LargeUniaxialStretchMatchesTheHomogeneousSolution) {
+  const double L = 0.02, H = 0.01, stretch = 1.5;
+  for (const char* model : {"corotational", "stvk", "neohookean"}) {
+    MaterialLaw law(Material{material_model(model), 1.0e4, 0.3, 1000.0, 0.0, 0.0});
+    auto lateral_stress = [&](double l2) { return law.stress(Vec3(stretch, l2, l2).asDiagonal().toDenseMatrix())(1, 1); };
+    double lo = 0.5, hi = 1.0;  // bisection on the lateral stretch
+    for (int k = 0; k < 200; ++k) {
+      double mid = 0.5 * (lo + hi);
+      (lateral_stress(mid) > 0 ? hi : lo) = mid;
+    }
+    const double l2 = 0.5 * (lo + hi);
+    const double force = law.stress(Vec3(stretch, l2, l2).asDiagonal().toDenseMatrix())(0, 0) * H * H;
+    std::string yaml = R"(
+domain: {box: {min: [0, 0, 0], max: [0.02, 0.01, 0.01]}}
+material: {young: 1.0e4, poisson: 0.3}
+discretization: {fem: {element: tet4, size: 0.005}}
+boundary:
+  - select: {plane: {axis: x, at: 0.0}}
+    fix: [x]
+  - select: {plane: {axis: y, at: 0.0}}
+    fix: [y]
+  - select: {plane: {axis: z, at: 0.0}}
+    fix: [z]
+  - select: {plane: {axis: x, at: 0.02}}
+    displacement: [0.01, null, null]
+solve: {analysis: static, load_steps: 4, newton: {tolerance: 1.0e-12}}
+output:
+  vtk: false
+  probes:
+    - {name: pull, select: {plane: {axis: x, at: 0.02}}, field: reaction}
+    - {name: corner, point: [0.02, 0.01, 0.01], field: displacement}
+)";
+    Scene scene = testing::scene_from_text(yaml, {std::string("material.model=") + model,
+                                                  "output.dir=" + testing::output_directory(std::string("stretch_") + model)});
+    json s = run_scene(scene, {"", true}).summary;
+    ASSERT_EQ(s["status"], "ok") << model;
+    EXPECT_NEAR(s["probes"]["pull"]["reaction"][0].get<double>(), force, 1e-8 * force) << model;
+    EXPECT_NEAR(s["probes"]["corner"]["displacement"][1].get<double>(), (l2 - 1) * H, 1e-10 * H) << model;
+    std::printf("%s: 50%% stretch, force %.6f N (exact %.6f N), lateral stretch %.6f\n", model,
+                s["probes"]["pull"]["reaction"][0].get<double>(), force, l2);
+  }
 }
 
 TEST(StaticScenes, MeshFileSceneCarriesItsWeight) {
