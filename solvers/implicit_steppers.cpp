@@ -16,8 +16,8 @@ std::string step_name(const char* what, int step, double t) {
   return s.str();
 }
 
-void apply_dirichlet(const std::vector<DirichletDof>& prescribed, double scale, Vector& u) {
-  for (const DirichletDof& d : prescribed) u[d.dof] = scale * d.value;
+void apply_dirichlet(const std::vector<DirichletDof>& prescribed, Vector& u) {
+  for (const DirichletDof& d : prescribed) u[d.dof] = d.value;
 }
 
 class StaticStepper final : public Stepper {
@@ -85,7 +85,7 @@ class DynamicImplicitStepper : public Stepper {
     const Index n = body_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
-    apply_dirichlet(body_.dirichlet(0.0), 1.0, s.u);
+    apply_dirichlet(body_.dirichlet(0.0), s.u);
     s.a = uses_acceleration() ? initial_acceleration(s) : Vector::Zero(n);
   }
 
