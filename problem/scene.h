@@ -132,6 +132,7 @@ struct SolveOptions {
   NewtonOptions newton;
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   std::string petsc = "-ksp_type cg -pc_type gamg";
+  double linear_tolerance = 1.0e-10;  // relative residual of iterative linear solves
   MassKind mass = MassKind::consistent;  // implicit runs; explicit always lumps
 };
 

@@ -125,6 +125,7 @@ json scene_to_json(const Scene& s) {
                   {"line_search", so.newton.line_search}}},
                 {"linear_solver", to_string(so.linear_solver)},
                 {"petsc", so.petsc},
+                {"linear_tolerance", so.linear_tolerance},
                 {"mass", so.mass == MassKind::lumped ? "lumped" : "consistent"}};
   json probes = json::array();
   for (const auto& p : s.output.probes) probes.push_back(probe_json(p, dim));

@@ -227,7 +227,7 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   }
   if (f.is_null()) return;
   f.allow_only({"analysis", "integrator", "dt", "duration", "newton", "linear_solver", "petsc",
-                "mass", "load_steps"});
+                "linear_tolerance", "mass", "load_steps"});
   if (f.has("analysis")) s.analysis = static_cast<Analysis>(f["analysis"].choice({"static", "dynamic"}));
   if (f.has("integrator"))
     s.integrator = static_cast<Integrator>(
@@ -253,6 +253,9 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   if (f.has("linear_solver"))
     s.linear_solver = static_cast<LinearSolverKind>(f["linear_solver"].choice({"cholmod", "petsc", "cg", "ldlt"}));
   if (f.has("petsc")) s.petsc = f["petsc"].text();
+  if (f.has("linear_tolerance")) s.linear_tolerance = f["linear_tolerance"].number();
+  if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
+    f["linear_tolerance"].out_of_range("0 < linear_tolerance < 1 (relative residual)");
   if (f.has("mass")) s.mass = static_cast<MassKind>(f["mass"].choice({"lumped", "consistent"}));
 }
 

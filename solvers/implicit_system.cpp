@@ -16,6 +16,8 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   LinearSolverOptions linear;
   linear.kind = options.linear_solver;
   linear.petsc_options = options.petsc;
+  linear.relative_tolerance = options.linear_tolerance;
+  linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
   reuse_factorization_ = !body_.is_linear() && (options.linear_solver == LinearSolverKind::cholmod ||
                                                 options.linear_solver == LinearSolverKind::ldlt);
@@ -110,7 +112,7 @@ void ImplicitSystem::factorize_now(const std::string& where) {
 
 bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::string& where) {
   constexpr int max_iterations = 20;
-  constexpr double tolerance = 1e-10;
+  const double tolerance = linear_tolerance_;
   const SparseMatrix& A = free_.restricted();
   const double b_norm = b.norm();
   x = Vector::Zero(b.size());

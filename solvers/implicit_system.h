@@ -33,7 +33,7 @@ class ImplicitSystem {
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).
   void update_matrix(double mass_coefficient, double stiffness_coefficient, const std::string& where);
-  /// x_f = A_ff^-1 b_f (relative residual below 1e-10 when solved iteratively).
+  /// x_f = A_ff^-1 b_f (to solve.linear_tolerance when solved iteratively).
   Vector solve(const Vector& rhs_free, const std::string& where);
 
  private:
@@ -53,6 +53,7 @@ class ImplicitSystem {
   bool analyzed_ = false;
   bool reuse_factorization_ = false;  // direct backend: precondition CG with a stale factor
   bool factor_stale_ = false;         // A changed since the last factorization
+  double linear_tolerance_;           // relative residual of the preconditioned CG
   std::unique_ptr<LinearSolver> solver_;
 
   void factorize_now(const std::string& where);

@@ -33,7 +33,7 @@ class LinearSolver {
 struct LinearSolverOptions {
   LinearSolverKind kind = LinearSolverKind::cholmod;
   std::string petsc_options;       // PETSc options database string
-  double relative_tolerance = 1e-12;  // iterative solvers
+  double relative_tolerance = 1e-10;  // iterative solvers (PETSc's own -ksp_rtol wins)
 };
 
 /// The one place that knows which backends exist. Records the stages it starts

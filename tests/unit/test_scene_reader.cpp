@@ -32,6 +32,7 @@ TEST(SceneReader, FillsDefaults) {
   EXPECT_EQ(s.discretization.fem.element, ElementType::tet4);
   EXPECT_EQ(s.solve.analysis, Analysis::static_analysis);
   EXPECT_EQ(s.solve.linear_solver, LinearSolverKind::cholmod);
+  EXPECT_DOUBLE_EQ(s.solve.linear_tolerance, 1e-10);
   EXPECT_EQ(s.output.dir, "results/scene");
   EXPECT_EQ(s.output.vtk_every, 10);
 }
@@ -64,6 +65,8 @@ TEST(SceneReader, OutOfRangeValueNamesKeyValueAndRange) {
   expect_contains(m, "0 <= poisson < 0.5");
   expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: -1}\n"), "young > 0");
   expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {dt: 0}\n"), "dt > 0");
+  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {linear_tolerance: 2}\n"),
+                  "0 < linear_tolerance < 1");
 }
 
 TEST(SceneReader, WrongTypesAndShapesAreRefused) {
