@@ -51,7 +51,7 @@ Mesh ordered_for_locality(Mesh mesh) {
 FemBody::FemBody(const Scene& scene, Mesh mesh)
     : mesh_(ordered_for_locality(std::move(mesh))),
       facets_(boundary_facets(mesh_)),
-      coloring_(color_cells(mesh_)),
+      schedule_(schedule_cells(mesh_, omp_get_max_threads())),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
       law_(scene.material),
       density_(scene.material.density) {
@@ -96,17 +96,18 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
   using Work = ElementWork<Dim, Npc>;
   if (f) f->setZero(dof_count());
   double total_energy = 0.0;
-  // Colour by colour: cells of one colour share no node, so their forces and
+  // Phase by phase: the ranges of one phase share no node, so their forces and
   // blocks are written without atomics.
 #pragma omp parallel reduction(+ : total_energy)
   {
     Work work;
     Mat3 P;
     Mat9 dPdF;
-    for (int color = 0; color < coloring_.color_count(); ++color) {
-#pragma omp for schedule(static)
-      for (Index slot = coloring_.start[color]; slot < coloring_.start[color + 1]; ++slot) {
-        const Index c = coloring_.cells[slot];
+    for (const auto& phase : schedule_.phases) {
+#pragma omp for schedule(static, 1)
+      for (std::size_t range = 0; range < phase.size(); ++range)
+      for (Index slot = phase[range].first; slot < phase[range].second; ++slot) {
+        const Index c = schedule_.cells[slot];
         auto nodes = mesh_.cell(c);
         Eigen::Matrix<double, Dim, Npc> U;
         for (int a = 0; a < Npc; ++a)

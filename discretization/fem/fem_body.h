@@ -7,7 +7,7 @@
 #include "core/run_report.h"
 #include "discretization/discrete_body.h"
 #include "geometry/boundary_facets.h"
-#include "geometry/cell_coloring.h"
+#include "geometry/cell_schedule.h"
 #include "geometry/mesh.h"
 #include "problem/material.h"
 
@@ -53,7 +53,7 @@ class FemBody final : public DiscreteBody {
 
   Mesh mesh_;
   BoundaryFacets facets_;
-  CellColoring coloring_;      // cells of one colour share no node: parallel without conflicts
+  CellSchedule schedule_;      // ranges of one phase share no node: parallel without conflicts
   std::vector<char> on_boundary_;
   MaterialLaw law_;
   double density_;

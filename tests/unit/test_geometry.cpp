@@ -8,6 +8,7 @@
 
 #include "geometry/box_mesher.h"
 #include "geometry/cell_coloring.h"
+#include "geometry/cell_schedule.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/point_location.h"
 #include "support/test_support.h"
@@ -74,6 +75,37 @@ TEST(Geometry, CellsOfOneColourShareNoNode) {
     for (Index i = coloring.start[k]; i < coloring.start[k + 1]; ++i)
       for (Index n : mesh.cell(coloring.cells[i])) ASSERT_TRUE(nodes.insert(n).second) << "colour " << k;
   }
+}
+
+void expect_conflict_free_cover(const Mesh& mesh, const CellSchedule& s) {
+  std::vector<int> seen(mesh.cell_count(), 0);
+  for (const auto& phase : s.phases) {
+    std::vector<int> owner(mesh.nodes.size(), -1);
+    for (std::size_t r = 0; r < phase.size(); ++r)
+      for (Index k = phase[r].first; k < phase[r].second; ++k) {
+        ++seen[s.cells[k]];
+        for (Index n : mesh.cell(s.cells[k])) {
+          ASSERT_TRUE(owner[n] < 0 || owner[n] == static_cast<int>(r)) << "two ranges of a phase share node " << n;
+          owner[n] = static_cast<int>(r);
+        }
+      }
+  }
+  for (Index c = 0; c < mesh.cell_count(); ++c) ASSERT_EQ(seen[c], 1) << "cell " << c;
+}
+
+TEST(Geometry, CellScheduleIsBandedOnOrderedMeshesAndColouredOtherwise) {
+  Mesh mesh = testing::unit_box_mesh(3, 1, 0.08);
+  CellSchedule unordered = schedule_cells(mesh, 2);
+  expect_conflict_free_cover(mesh, unordered);
+  order_for_locality(mesh);
+  CellSchedule banded = schedule_cells(mesh, 2);
+  EXPECT_TRUE(banded.banded);
+  EXPECT_EQ(banded.phases.size(), 2u);
+  expect_conflict_free_cover(mesh, banded);
+  // Too many threads for the band: the chunks touch, so colours take over.
+  CellSchedule many = schedule_cells(mesh, 64);
+  EXPECT_FALSE(many.banded);
+  expect_conflict_free_cover(mesh, many);
 }
 
 TEST(Geometry, LocalityOrderingKeepsTheMeshAndNarrowsTheBandwidth) {

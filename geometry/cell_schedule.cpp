@@ -1,0 +1,63 @@
+#include "geometry/cell_schedule.h"
+
+#include <numeric>
+
+#include "geometry/cell_coloring.h"
+
+namespace kerf {
+namespace {
+
+/// Whether the ranges of every phase are pairwise node-disjoint.
+bool conflict_free(const Mesh& mesh, const CellSchedule& s) {
+  std::vector<int> owner(mesh.nodes.size());
+  for (const auto& phase : s.phases) {
+    std::fill(owner.begin(), owner.end(), -1);
+    for (std::size_t r = 0; r < phase.size(); ++r)
+      for (Index k = phase[r].first; k < phase[r].second; ++k)
+        for (Index n : mesh.cell(s.cells[k])) {
+          if (owner[n] >= 0 && owner[n] != static_cast<int>(r)) return false;
+          owner[n] = static_cast<int>(r);
+        }
+  }
+  return true;
+}
+
+/// Splits [begin, end) into `parts` nearly equal ranges.
+std::vector<std::pair<Index, Index>> split(Index begin, Index end, int parts) {
+  std::vector<std::pair<Index, Index>> out;
+  for (int p = 0; p < parts; ++p)
+    out.emplace_back(begin + (end - begin) * p / parts, begin + (end - begin) * (p + 1) / parts);
+  return out;
+}
+
+}  // namespace
+
+CellSchedule schedule_cells(const Mesh& mesh, int threads) {
+  const Index count = mesh.cell_count();
+  CellSchedule s;
+  if (threads <= 1) {
+    s.cells.resize(count);
+    std::iota(s.cells.begin(), s.cells.end(), 0);
+    s.phases = {{{0, count}}};
+    s.banded = true;
+    return s;
+  }
+  // Banded: chunk c of 2T holds cells [c n / 2T, (c + 1) n / 2T) in mesh order.
+  s.cells.resize(count);
+  std::iota(s.cells.begin(), s.cells.end(), 0);
+  auto chunks = split(0, count, 2 * threads);
+  s.phases.assign(2, {});
+  for (std::size_t c = 0; c < chunks.size(); ++c) s.phases[c % 2].push_back(chunks[c]);
+  s.banded = true;
+  if (conflict_free(mesh, s)) return s;
+  // Colours, each split among the threads.
+  CellColoring coloring = color_cells(mesh);
+  s.cells = coloring.cells;
+  s.phases.clear();
+  for (int k = 0; k < coloring.color_count(); ++k)
+    s.phases.push_back(split(coloring.start[k], coloring.start[k + 1], threads));
+  s.banded = false;
+  return s;
+}
+
+}  // namespace kerf

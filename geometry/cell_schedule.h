@@ -1,0 +1,23 @@
+#pragma once
+// An order of the cells for parallel assembly without write conflicts: phases
+// run one after another; the ranges of one phase run in parallel and share no
+// node. On a banded (RCM-ordered) mesh the cells are cut into 2 x threads
+// contiguous chunks, even chunks in one phase and odd in the next, so each
+// thread walks the matrix rows in order; where chunks would touch, greedy
+// colouring is the fallback (one phase per colour).
+#include <utility>
+#include <vector>
+
+#include "geometry/mesh.h"
+
+namespace kerf {
+
+struct CellSchedule {
+  std::vector<Index> cells;                                   // all cells, in schedule order
+  std::vector<std::vector<std::pair<Index, Index>>> phases;   // [begin, end) ranges into `cells`
+  bool banded = false;                                        // chunks (true) or colours (false)
+};
+
+CellSchedule schedule_cells(const Mesh& mesh, int threads);
+
+}  // namespace kerf
