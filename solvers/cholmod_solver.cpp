@@ -2,8 +2,6 @@
 
 #include <cholmod.h>
 
-#include <cstdio>
-#include <cstdlib>
 #include <sstream>
 
 #include "core/thread_scope.h"
@@ -50,9 +48,6 @@ class CholmodSolver final : public LinearSolver {
       return LinearSolverStatus::failure(why.str());
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
-    if (std::getenv("KERF_CHOLMOD_DEBUG"))
-      std::fprintf(stderr, "cholmod: n %zu lnz %.3g flops %.3g ordering %d supernodal %d\n", A.rows() + 0ul,
-                   common_.lnz, common_.fl, common_.method[common_.selected].ordering, factor_->is_super);
     return LinearSolverStatus::success();
   }
 

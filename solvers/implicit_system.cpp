@@ -118,6 +118,17 @@ bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::st
   x = Vector::Zero(b.size());
   if (b_norm == 0.0) return true;
   Vector r = b, z, p, Ap;
+  // Start from the previous solution scaled to minimise the A-norm error
+  // (never worse than zero): successive steps solve similar systems.
+  if (previous_solution_.size() == b.size()) {
+    Ap.noalias() = A * previous_solution_;
+    double curvature = previous_solution_.dot(Ap);
+    if (curvature > 0.0) {
+      double scale = previous_solution_.dot(b) / curvature;
+      x = scale * previous_solution_;
+      r = b - scale * Ap;
+    }
+  }
   auto precondition = [&](const Vector& in, Vector& out) {
     LinearSolverStatus status = solver_->solve(in, out);
     KERF_CHECK(status.ok, where, ": ", status.message);
@@ -146,13 +157,17 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   ScopedTimer timer(report_.phases, "solve");
   Vector x;
   if (factor_stale_) {
-    if (preconditioned_cg(rhs_free, x, where) && x.allFinite()) return x;
+    if (preconditioned_cg(rhs_free, x, where) && x.allFinite()) {
+      previous_solution_ = x;
+      return x;
+    }
     factorize_now(where);
   }
   LinearSolverStatus status = solver_->solve(rhs_free, x);
   KERF_CHECK(status.ok, where, ": ", status.message);
   report_.counters["linear_iterations"] += solver_->last_iterations();
   KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
+  previous_solution_ = x;
   return x;
 }
 

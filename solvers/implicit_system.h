@@ -54,6 +54,7 @@ class ImplicitSystem {
   bool reuse_factorization_ = false;  // direct backend: precondition CG with a stale factor
   bool factor_stale_ = false;         // A changed since the last factorization
   double linear_tolerance_;           // relative residual of the preconditioned CG
+  Vector previous_solution_;          // warm start of the next preconditioned CG
   std::unique_ptr<LinearSolver> solver_;
 
   void factorize_now(const std::string& where);
