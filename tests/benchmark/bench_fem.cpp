@@ -23,7 +23,7 @@ Scene block_scene(double size, const std::string& solver) {
   std::string yaml = R"(
 name: block
 domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
-material: {model: MODEL, young: 1.0e5, poisson: 0.3, density: 1000}
+material: {model: corotational, young: 1.0e5, poisson: 0.3, density: 1000}
 discretization: {fem: {element: tet4}}
 boundary:
   - select: {plane: {axis: z, at: 0.0}}
@@ -32,7 +32,6 @@ body_force: {gravity: [0, 0, -9.81]}
 solve: {analysis: dynamic, integrator: implicit-euler, dt: 0.01, duration: 10.0, newton: {max_iterations: 1}}
 output: {vtk: false}
 )";
-  yaml.replace(yaml.find("MODEL"), 5, std::getenv("KERF_BENCH_MODEL") ? std::getenv("KERF_BENCH_MODEL") : "corotational");
   return parse_scene(yaml, "benchmark", ".",
                      {"discretization.fem.size=" + std::to_string(size), "solve.linear_solver=" + solver,
                       "solve.petsc=-ksp_type cg -pc_type gamg -ksp_rtol 1e-8"});
@@ -84,10 +83,14 @@ void BM_CentralDifferenceStepCorotational(benchmark::State& state) {
   state.counters["nodes"] = body->node_count();
 }
 
-void BM_StiffnessAssemblyCorotational(benchmark::State& state) {
-  Scene scene = block_scene(sizes[state.range(0)], "cholmod");
+/// The block at size level `level`, discretized.
+std::unique_ptr<DiscreteBody> block_body(int level) {
   RunReport report;
-  auto body = make_body(scene, report);
+  return make_body(block_scene(sizes[level], "cholmod"), report);
+}
+
+void BM_StiffnessAssemblyCorotational(benchmark::State& state) {
+  auto body = block_body(state.range(0));
   SparseMatrix K = build_pattern(*body);
   Vector u = Vector::Constant(body->dof_count(), 1e-4);
   Vector f;
@@ -101,9 +104,7 @@ void BM_StiffnessAssemblyCorotational(benchmark::State& state) {
 // The element kernels alone (stress, tangent, element matrices), blocks discarded:
 // the difference to the assembly above is the cost of scattering into the matrix.
 void BM_ElementKernelsCorotational(benchmark::State& state) {
-  Scene scene = block_scene(sizes[state.range(0)], "cholmod");
-  RunReport report;
-  auto body = make_body(scene, report);
+  auto body = block_body(state.range(0));
   Vector u = Vector::Constant(body->dof_count(), 1e-4);
   Vector f;
   BlockSink discard = [](std::span<const Index>, std::span<const double> values) {
@@ -114,9 +115,8 @@ void BM_ElementKernelsCorotational(benchmark::State& state) {
 }
 
 void BM_CholmodFactorization(benchmark::State& state) {
-  Scene scene = block_scene(sizes[state.range(0)], "cholmod");
+  auto body = block_body(state.range(0));
   RunReport report;
-  auto body = make_body(scene, report);
   SparseMatrix K = build_pattern(*body);
   body->tangent(Vector::Zero(body->dof_count()), add_into(K), nullptr);
   FreeDofs free(body->dof_count(), body->dirichlet(0.0));
