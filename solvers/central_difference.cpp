@@ -56,7 +56,7 @@ class CentralDifferenceStepper final : public Stepper {
     for (const DirichletDof& d : body_.dirichlet(0.0)) s.u[d.dof] = d.value;
     body_.external_force(0.0, f_ext_);
     body_.internal_force(s.u, f_int_);
-    s.a = acceleration(s.v);
+    acceleration(s.v, s.a);
   }
 
   void advance(SolverState& s, double dt) override {
@@ -66,11 +66,13 @@ class CentralDifferenceStepper final : public Stepper {
     s.u += dt * half_velocity_;
     body_.external_force(t1, f_ext_);
     // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
-    if (beta_ != 0.0)
-      body_.internal_force(s.u + beta_ * half_velocity_, f_int_);
-    else
+    if (beta_ != 0.0) {
+      damped_u_ = s.u + beta_ * half_velocity_;
+      body_.internal_force(damped_u_, f_int_);
+    } else {
       body_.internal_force(s.u, f_int_);
-    s.a = acceleration(half_velocity_);
+    }
+    acceleration(half_velocity_, s.a);
     s.v = half_velocity_ + 0.5 * dt * s.a;
     zero_constrained(s.v);
     s.t = t1;
@@ -92,10 +94,10 @@ class CentralDifferenceStepper final : public Stepper {
   }
 
  private:
-  Vector acceleration(const Vector& v) const {
-    Vector a = inverse_mass_.cwiseProduct(f_ext_ - f_int_ - alpha_ * mass_.cwiseProduct(v));
+  /// a = M^-1 (f_ext - f_int - alpha M v), zero at constrained dofs; no allocation once sized.
+  void acceleration(const Vector& v, Vector& a) const {
+    a = inverse_mass_.cwiseProduct(f_ext_ - f_int_) - alpha_ * v;
     zero_constrained(a);
-    return a;
   }
   void zero_constrained(Vector& x) const {
     for (Index d = 0; d < x.size(); ++d)
@@ -106,7 +108,7 @@ class CentralDifferenceStepper final : public Stepper {
   SolveOptions options_;
   double alpha_, beta_;
   FreeDofs free_;
-  Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_;
+  Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_, damped_u_;
   double critical_step_ = 0.0;
   double element_bound_step_ = 0.0;
 };

@@ -181,6 +181,22 @@ TEST(Dynamics, DampedImplicitEulerSettlesOnTheStaticSolution) {
   EXPECT_NEAR(settled, expected, 1e-3 * std::abs(expected));
 }
 
+TEST(Dynamics, DampedCentralDifferencesSettleOnTheStaticSolution) {
+  // Mass and stiffness damping; the stiffness part lowers the critical step.
+  std::vector<std::string> damping = {"material.damping.mass=20", "material.damping.stiffness=2e-5"};
+  double critical = critical_step_of(damping);
+  double undamped = critical_step_of({});
+  EXPECT_LT(critical, undamped);
+  std::vector<std::string> run = damping;
+  for (const char* s : {"solve.integrator=central-difference", "solve.duration=1.5", "output.vtk={every: 100}"})
+    run.push_back(s);
+  run.push_back("solve.dt=" + std::to_string(0.95 * critical));
+  Table dynamic = run_bar(run, "damped_central_difference");
+  Table statics = run_bar({"solve.analysis=static"}, "bar_static_reference");
+  double settled = dynamic.column("tip_uz").back(), expected = statics.column("tip_uz").back();
+  EXPECT_NEAR(settled, expected, 2e-3 * std::abs(expected));
+}
+
 TEST(Dynamics, OneLinearisedSolvePerStepMatchesFullNewtonForALinearBody) {
   Table one = run_bar({"solve.integrator=implicit-euler", "solve.newton.max_iterations=1", "solve.duration=0.1"},
                       "euler_one_solve");
