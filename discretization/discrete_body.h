@@ -57,6 +57,8 @@ class DiscreteBody {
 
   virtual int dofs_per_node() const = 0;
   virtual Index node_count() const = 0;
+  /// Reference position of a node (m); z = 0 in 2D.
+  virtual Vec3 node_position(Index node) const = 0;
   Index dof_count() const { return dofs_per_node() * node_count(); }
 
   virtual void visit_couplings(const CouplingVisitor& visit) const = 0;

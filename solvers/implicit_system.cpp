@@ -3,6 +3,28 @@
 #include "core/check.h"
 
 namespace kerf {
+namespace {
+
+/// Translations and infinitesimal rotations on the free dofs, orthonormalised.
+std::vector<Vector> rigid_body_modes(const DiscreteBody& body, const FreeDofs& free) {
+  const int dim = body.dofs_per_node();
+  std::vector<Vector> modes;
+  auto add = [&](auto&& mode_at) {
+    Vector v(free.free_count());
+    for (Index i = 0; i < free.free_count(); ++i) {
+      Index dof = free.free_dofs()[i];
+      v[i] = mode_at(body.node_position(dof / dim))[dof % dim];
+    }
+    for (const Vector& m : modes) v -= m.dot(v) * m;  // Gram-Schmidt
+    if (v.norm() > 1e-12 * std::sqrt(static_cast<double>(v.size()))) modes.push_back(v.normalized());
+  };
+  for (int axis = 0; axis < dim; ++axis) add([&](const Vec3&) { return Vec3(Vec3::Unit(axis)); });
+  for (int axis = dim == 3 ? 0 : 2; axis < 3; ++axis)
+    add([&](const Vec3& x) { return Vec3(Vec3::Unit(axis).cross(x)); });
+  return modes;
+}
+
+}  // namespace
 
 ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass,
                                RunReport& report)
@@ -19,6 +41,7 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   linear.relative_tolerance = options.linear_tolerance;
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
+  solver_->set_near_null_space(rigid_body_modes(body_, free_));
   reuse_factorization_ = !body_.is_linear() && (options.linear_solver == LinearSolverKind::cholmod ||
                                                 options.linear_solver == LinearSolverKind::ldlt);
   if (needs_mass) {

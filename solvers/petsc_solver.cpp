@@ -42,6 +42,7 @@ class PetscSolver final : public LinearSolver {
     if (all_) VecDestroy(&all_);
   }
   std::string name() const override { return "petsc"; }
+  void set_near_null_space(const std::vector<Vector>& modes) override { near_null_space_ = modes; }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     const PetscInt n = static_cast<PetscInt>(pattern.rows());
@@ -67,6 +68,7 @@ class PetscSolver final : public LinearSolver {
     first_ = first;
     end_ = end;
     check(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
+    attach_near_null_space();
     check(VecScatterCreateToAll(x_, &gather_, &all_), "VecScatterCreateToAll");
 
     check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
@@ -136,6 +138,28 @@ class PetscSolver final : public LinearSolver {
   int last_iterations() const override { return iterations_; }
 
  private:
+  /// Rigid-body modes as PETSc's near-null space: GAMG builds its coarse
+  /// spaces from them (elasticity converges poorly without).
+  void attach_near_null_space() {
+    if (near_null_space_.empty()) return;
+    std::vector<Vec> vectors(near_null_space_.size());
+    for (std::size_t k = 0; k < vectors.size(); ++k) {
+      check(VecDuplicate(x_, &vectors[k]), "VecDuplicate");
+      PetscScalar* v = nullptr;
+      check(VecGetArray(vectors[k], &v), "VecGetArray");
+      for (PetscInt r = first_; r < end_; ++r) v[r - first_] = near_null_space_[k][r];
+      check(VecRestoreArray(vectors[k], &v), "VecRestoreArray");
+    }
+    MatNullSpace space = nullptr;
+    check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
+                             &space),
+          "MatNullSpaceCreate");
+    check(MatSetNearNullSpace(matrix_, space), "MatSetNearNullSpace");
+    check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
+    for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
+  }
+
+  std::vector<Vector> near_null_space_;
   std::string options_;
   double tolerance_;
   Mat matrix_ = nullptr;

@@ -20,6 +20,7 @@ class FemBody final : public DiscreteBody {
 
   int dofs_per_node() const override { return mesh_.dimension; }
   Index node_count() const override { return mesh_.node_count(); }
+  Vec3 node_position(Index node) const override { return mesh_.nodes[node]; }
   Index element_count() const override { return mesh_.cell_count(); }
 
   void visit_couplings(const CouplingVisitor& visit) const override;

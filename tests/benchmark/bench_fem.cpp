@@ -34,7 +34,7 @@ output: {vtk: false}
 )";
   return parse_scene(yaml, "benchmark", ".",
                      {"discretization.fem.size=" + std::to_string(size), "solve.linear_solver=" + solver,
-                      "solve.petsc=-ksp_type cg -pc_type gamg -ksp_rtol 1e-8"});
+                      "solve.petsc=-ksp_type cg -pc_type gamg -ksp_reuse_preconditioner"});
 }
 
 void implicit_step(benchmark::State& state, const std::string& solver) {
