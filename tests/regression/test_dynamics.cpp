@@ -103,6 +103,23 @@ TEST(Dynamics, UndampedNewmarkConservesEnergyOver1000Steps) {
   EXPECT_LT(drift / scale, 1e-6);
 }
 
+TEST(Dynamics, PlaneStrainNewmarkConservesEnergyToo) {
+  std::string dir = testing::output_directory("plate_newmark");
+  Scene scene = read_scene(testing::source_path("scenes/plate_tension_2d.yaml"),
+                           {"solve.analysis=dynamic", "solve.integrator=newmark", "solve.dt=2e-4", "solve.duration=0.1",
+                            "solve.newton.tolerance=1e-12", "output.vtk=false",
+                            "output.probes.2={name: energy, field: energy}", "output.dir=" + dir});
+  run_scene(scene, {"", true});
+  Table t = read_csv(dir + "/probes.csv");
+  auto total = t.column("energy_total");
+  double scale = max_abs(t.column("energy_strain")), drift = 0.0;
+  ASSERT_GT(scale, 0.0);
+  for (double e : total) drift = std::max(drift, std::abs(e - total.front()));
+  EXPECT_LT(drift / scale, 1e-6);
+  // The suddenly applied traction makes the plate ring about the static stretch.
+  EXPECT_GT(max_abs(t.column("corner_ux")), 1.5 * 0.91 * 1000 * 0.1 / 1e6);
+}
+
 TEST(Dynamics, CentralDifferencesStayBoundedJustBelowTheCriticalStep) {
   double dt = 0.98 * critical_step_of({});
   int steps = 5000;
