@@ -58,6 +58,22 @@ Mat9 tangent_from_directions(Directional&& dP) {
 
 }  // namespace
 
+/// The rotation of the polar decomposition F = R S. Higham's Newton iteration
+/// X <- (X + X^-T) / 2 converges quadratically for det F > 0 and is several
+/// times cheaper than an SVD; nearly flat or inverted F takes the SVD.
+Mat3 polar_rotation(const Mat3& F) {
+  if (F.determinant() > 1e-3 * std::pow(F.norm() / std::sqrt(3.0), 3)) {
+    Mat3 X = F;
+    for (int k = 0; k < 30; ++k) {
+      Mat3 next = 0.5 * (X + X.inverse().transpose());
+      double change = (next - X).squaredNorm();
+      X = next;
+      if (change < 1e-28) return X;
+    }
+  }
+  return RotationSvd(F).rotation();
+}
+
 Lame Lame::from_young_poisson(double young, double poisson) {
   Lame l;
   l.mu = young / (2.0 * (1.0 + poisson));
@@ -76,9 +92,9 @@ double MaterialLaw::energy(const Mat3& F) const {
       return mu * e.squaredNorm() + 0.5 * lambda * e.trace() * e.trace();
     }
     case MaterialModel::corotational: {
-      RotationSvd svd(F);
-      double t = svd.sigma.sum() - 3.0;
-      return mu * (F - svd.rotation()).squaredNorm() + 0.5 * lambda * t * t;
+      Mat3 R = polar_rotation(F);
+      double t = (R.transpose() * F).trace() - 3.0;
+      return mu * (F - R).squaredNorm() + 0.5 * lambda * t * t;
     }
     case MaterialModel::stvk: {
       Mat3 E = 0.5 * (F.transpose() * F - Mat3::Identity());
@@ -103,9 +119,8 @@ Mat3 MaterialLaw::stress(const Mat3& F) const {
       return lambda * e.trace() * I + 2.0 * mu * e;
     }
     case MaterialModel::corotational: {
-      RotationSvd svd(F);
-      Mat3 R = svd.rotation();
-      return 2.0 * mu * (F - R) + lambda * (svd.sigma.sum() - 3.0) * R;
+      Mat3 R = polar_rotation(F);
+      return 2.0 * mu * (F - R) + lambda * ((R.transpose() * F).trace() - 3.0) * R;
     }
     case MaterialModel::stvk: {
       Mat3 E = 0.5 * (F.transpose() * F - I);

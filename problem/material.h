@@ -41,6 +41,9 @@ class MaterialLaw {
   Lame lame_;
 };
 
+/// R of the polar decomposition F = R S (a proper rotation; S symmetric).
+Mat3 polar_rotation(const Mat3& F);
+
 /// von Mises equivalent of a Cauchy stress (Pa).
 double von_mises(const Mat3& sigma);
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <Eigen/SVD>
 
 #include "problem/material.h"
 
@@ -80,6 +81,26 @@ TEST(Material, NonlinearModelsAreObjective) {
     MaterialLaw law(m, 1.0e6, 0.3);
     EXPECT_NEAR(law.energy(R * F), law.energy(F), 1e-10 * law.energy(F)) << to_string(m);
     EXPECT_LT((law.stress(R * F) - R * law.stress(F)).norm(), 1e-9 * law.stress(F).norm()) << to_string(m);
+  }
+}
+
+TEST(Material, PolarRotationIsTheRotationOfTheSvd) {
+  for (int seed = 1; seed <= 50; ++seed) {
+    // Large stretches and rotations, and (seeds over 40) nearly flat or inverted F.
+    Mat3 R0 = Eigen::AngleAxisd(0.3 * seed, Vec3(1, seed % 3, 2).normalized()).toRotationMatrix();
+    Mat3 F = R0 * sample_deformation(seed, 0.6);
+    if (seed > 40) F.col(seed % 3) *= seed % 2 ? 1e-6 : -0.5;
+    Mat3 R = polar_rotation(F);
+    EXPECT_LT((R.transpose() * R - Mat3::Identity()).norm(), 1e-12) << seed;
+    EXPECT_NEAR(R.determinant(), 1.0, 1e-12) << seed;
+    Eigen::JacobiSVD<Mat3> svd(F, Eigen::ComputeFullU | Eigen::ComputeFullV);
+    Mat3 U = svd.matrixU(), V = svd.matrixV();
+    if (U.determinant() < 0) U.col(2) *= -1;
+    if (V.determinant() < 0) V.col(2) *= -1;
+    EXPECT_LT((R - U * V.transpose()).norm(), 1e-10) << seed;
+    // S = R^T F is symmetric.
+    Mat3 S = R.transpose() * F;
+    EXPECT_LT((S - S.transpose()).norm(), 1e-10 * F.norm()) << seed;
   }
 }
 
