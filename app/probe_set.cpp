@@ -95,9 +95,9 @@ std::vector<double> ProbeSet::values(const SolverState& state, const Vector& rea
   return out;
 }
 
-nlohmann::json ProbeSet::final_values(const SolverState& state, const Vector& reaction,
+nlohmann::ordered_json ProbeSet::final_values(const SolverState& state, const Vector& reaction,
                                       const EnergyState& energy) const {
-  nlohmann::json out = nlohmann::json::object();
+  nlohmann::ordered_json out = nlohmann::ordered_json::object();
   for (const Resolved& r : probes_) {
     auto v = probe_values(r, state, reaction, energy);
     switch (r.probe.field) {

@@ -28,7 +28,7 @@ class ProbeSet {
   bool needs_energy() const;
   /// `reaction` may be empty when no probe needs it.
   std::vector<double> values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
-  nlohmann::json final_values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
+  nlohmann::ordered_json final_values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
 
  private:
   struct Resolved {

@@ -21,7 +21,7 @@
 namespace kerf {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 std::atomic<bool> interrupted{false};
 

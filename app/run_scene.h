@@ -14,7 +14,7 @@ struct RunOptions {
 
 struct RunOutcome {
   std::string directory;
-  nlohmann::json summary;
+  nlohmann::ordered_json summary;
 };
 
 /// Writes summary.json (status "ok"), probes.csv and the ParaView series.

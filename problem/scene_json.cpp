@@ -3,7 +3,7 @@
 namespace kerf {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 json vec(const Vec3& v, int dim) {
   json a = json::array();

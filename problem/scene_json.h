@@ -7,6 +7,6 @@
 
 namespace kerf {
 
-nlohmann::json scene_to_json(const Scene& scene);
+nlohmann::ordered_json scene_to_json(const Scene& scene);
 
 }  // namespace kerf

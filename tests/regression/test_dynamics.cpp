@@ -16,7 +16,7 @@
 namespace kerf {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 // A soft bar clamped at x = 0 under suddenly applied gravity.
 const char* bar = R"(

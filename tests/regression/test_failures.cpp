@@ -16,7 +16,7 @@
 namespace kerf {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 // A very soft neo-Hookean block crushed by 40 g over 20 load steps: about a
 // third of the way, the compressed block loses stability (the tangent stops

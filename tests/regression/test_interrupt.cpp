@@ -51,7 +51,7 @@ TEST(Interrupt, CtrlCLeavesEveryFileReadable) {
   EXPECT_EQ(WEXITSTATUS(status), 1);
 
   std::ifstream in(dir + "/summary.json");
-  nlohmann::json summary = nlohmann::json::parse(in);
+  nlohmann::ordered_json summary = nlohmann::ordered_json::parse(in);
   EXPECT_EQ(summary["status"], "error");
   EXPECT_NE(summary["error"].get<std::string>().find("interrupted"), std::string::npos);
 

@@ -15,7 +15,7 @@
 namespace kerf {
 namespace {
 
-using nlohmann::json;
+using json = nlohmann::ordered_json;
 
 json run(const std::string& scene_file, std::vector<std::string> overrides, const std::string& test) {
   overrides.push_back("output.dir=" + testing::output_directory(test));
