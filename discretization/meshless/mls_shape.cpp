@@ -1,0 +1,126 @@
+#include "discretization/meshless/mls_shape.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+
+namespace kerf {
+namespace {
+
+constexpr int max_terms = 10;  // 3D quadratic
+using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_terms, 1>;
+using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_terms, max_terms>;
+
+/// p(xi) for xi = (y - x) / h: [1, xi_1..xi_dim, (quadratic) xi_i xi_j for i <= j].
+Column basis_at(int dim, MlsBasis basis, const Vec3& xi) {
+  Column p(mls_basis_size(dim, basis));
+  int k = 0;
+  p[k++] = 1.0;
+  for (int i = 0; i < dim; ++i) p[k++] = xi[i];
+  if (basis == MlsBasis::quadratic)
+    for (int i = 0; i < dim; ++i)
+      for (int j = i; j < dim; ++j) p[k++] = xi[i] * xi[j];
+  return p;
+}
+
+}  // namespace
+
+int mls_basis_size(int dim, MlsBasis basis) {
+  return 1 + dim + (basis == MlsBasis::quadratic ? dim * (dim + 1) / 2 : 0);
+}
+
+WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius) {
+  WeightValue w;
+  const Vec3 s = x - node;
+  const double distance = s.norm(), r = distance / radius;
+  if (r >= 1.0) return w;
+  const double a = 1.0 - r, d2 = radius * radius;
+  w.value = 1.0 - 6.0 * r * r + 8.0 * r * r * r - 3.0 * r * r * r * r;
+  // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
+  w.gradient = -12.0 * a * a * s / d2;
+  w.hessian = -12.0 / d2 * a * a * Mat3::Identity();
+  if (distance > 0.0) w.hessian += 24.0 / d2 * a * s * s.transpose() / (distance * radius);
+  return w;
+}
+
+bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
+                         std::span<const double> radii, bool hessians, MlsShape& out) {
+  const std::size_t n = nodes.size();
+  const int m = mls_basis_size(dim, basis);
+  out.value.assign(n, 0.0);
+  out.gradient.assign(n, Vec3::Zero());
+  out.hessian.assign(hessians ? n : 0, Mat3::Zero());
+  out.condition = std::numeric_limits<double>::infinity();
+  if (n == 0) return false;
+  // The basis is centred at x and scaled by the largest support: A stays O(1).
+  const double h = *std::max_element(radii.begin(), radii.end());
+  std::vector<Column> p(n);
+  std::vector<WeightValue> w(n);
+  Square A = Square::Zero(m, m);
+  Square dA[3], d2A[3][3];
+  for (int k = 0; k < dim; ++k) {
+    dA[k] = Square::Zero(m, m);
+    for (int l = 0; l < dim; ++l) d2A[k][l] = Square::Zero(m, m);
+  }
+  for (std::size_t I = 0; I < n; ++I) {
+    p[I] = basis_at(dim, basis, (nodes[I] - x) / h);
+    w[I] = quartic_weight(x, nodes[I], radii[I]);
+    Square ppT = p[I] * p[I].transpose();
+    A += w[I].value * ppT;
+    for (int k = 0; k < dim; ++k) {
+      dA[k] += w[I].gradient[k] * ppT;
+      if (hessians)
+        for (int l = 0; l < dim; ++l) d2A[k][l] += w[I].hessian(k, l) * ppT;
+    }
+  }
+  Eigen::SelfAdjointEigenSolver<Square> eigen(A);
+  const auto& lambda = eigen.eigenvalues();
+  out.condition = lambda[m - 1] / std::max(lambda[0], 0.0);
+  if (!(lambda[0] > 1e-12 * lambda[m - 1])) return false;
+  auto solve = [&](const Column& b) -> Column {
+    return eigen.eigenvectors() * (lambda.cwiseInverse().asDiagonal() * (eigen.eigenvectors().transpose() * b));
+  };
+  // Derivatives of p at the evaluation point (xi = 0): dp/dx_k = e_{1+k} / h;
+  // d2p/dx_k dx_l is 1/h^2 (2 on the diagonal) on the quadratic term xi_k xi_l.
+  const Column p0 = basis_at(dim, basis, Vec3::Zero());
+  Column dp[3], d2p[3][3];
+  for (int k = 0; k < dim; ++k) {
+    dp[k] = Column::Zero(m);
+    dp[k][1 + k] = 1.0 / h;
+    for (int l = 0; l < dim; ++l) d2p[k][l] = Column::Zero(m);
+  }
+  if (basis == MlsBasis::quadratic) {
+    int term = 1 + dim;
+    for (int i = 0; i < dim; ++i)
+      for (int j = i; j < dim; ++j, ++term) {
+        double value = (i == j ? 2.0 : 1.0) / (h * h);
+        d2p[i][j][term] = value;
+        d2p[j][i][term] = value;
+      }
+  }
+  // gamma = A^-1 p(x) and its derivatives (Belytschko et al.).
+  const Column gamma = solve(p0);
+  Column dgamma[3], d2gamma[3][3];
+  for (int k = 0; k < dim; ++k) dgamma[k] = solve(dp[k] - dA[k] * gamma);
+  if (hessians)
+    for (int k = 0; k < dim; ++k)
+      for (int l = 0; l < dim; ++l)
+        d2gamma[k][l] = solve(d2p[k][l] - dA[k] * dgamma[l] - dA[l] * dgamma[k] - d2A[k][l] * gamma);
+  for (std::size_t I = 0; I < n; ++I) {
+    const double gp = gamma.dot(p[I]);
+    out.value[I] = gp * w[I].value;
+    double dgp[3] = {0, 0, 0};
+    for (int k = 0; k < dim; ++k) {
+      dgp[k] = dgamma[k].dot(p[I]);
+      out.gradient[I][k] = dgp[k] * w[I].value + gp * w[I].gradient[k];
+    }
+    if (!hessians) continue;
+    for (int k = 0; k < dim; ++k)
+      for (int l = 0; l < dim; ++l)
+        out.hessian[I](k, l) = d2gamma[k][l].dot(p[I]) * w[I].value + dgp[k] * w[I].gradient[l] +
+                               dgp[l] * w[I].gradient[k] + gp * w[I].hessian(k, l);
+  }
+  return true;
+}
+
+}  // namespace kerf

@@ -1,0 +1,57 @@
+#include "geometry/neighbor_search.h"
+
+#include <nanoflann.hpp>
+
+#include <algorithm>
+
+namespace kerf {
+
+/// nanoflann's dataset adaptor over the point vector.
+struct PointIndex::Tree {
+  struct Cloud {
+    std::vector<Vec3> points;
+    std::size_t kdtree_get_point_count() const { return points.size(); }
+    double kdtree_get_pt(std::size_t i, std::size_t d) const { return points[i][static_cast<int>(d)]; }
+    template <class Box>
+    bool kdtree_get_bbox(Box&) const {
+      return false;
+    }
+  };
+  using KdTree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, Cloud>, Cloud, 3, std::size_t>;
+
+  explicit Tree(std::vector<Vec3> points) : cloud{std::move(points)}, tree(3, cloud, {16}) {}
+  Cloud cloud;
+  KdTree tree;
+};
+
+PointIndex::PointIndex(std::vector<Vec3> points) : tree_(std::make_unique<Tree>(std::move(points))) {}
+PointIndex::~PointIndex() = default;
+
+const std::vector<Vec3>& PointIndex::points() const { return tree_->cloud.points; }
+
+void PointIndex::within(const Vec3& x, double radius, std::vector<Index>& out) const {
+  thread_local std::vector<std::pair<std::size_t, double>> matches;
+  matches.clear();
+  nanoflann::SearchParams params(32, 0.0f, false);
+  tree_->tree.radiusSearch(x.data(), radius * radius, matches, params);
+  out.clear();
+  for (const auto& m : matches) out.push_back(static_cast<Index>(m.first));
+  std::sort(out.begin(), out.end());
+}
+
+NeighborLists covering_supports(const PointIndex& nodes, std::span<const double> radius,
+                                std::span<const Vec3> queries) {
+  const double largest = radius.empty() ? 0.0 : *std::max_element(radius.begin(), radius.end());
+  const auto& points = nodes.points();
+  NeighborLists lists;
+  std::vector<Index> candidates;
+  for (const Vec3& x : queries) {
+    nodes.within(x, largest, candidates);
+    for (Index i : candidates)
+      if ((x - points[i]).norm() < radius[i]) lists.index.push_back(i);
+    lists.start.push_back(static_cast<Index>(lists.index.size()));
+  }
+  return lists;
+}
+
+}  // namespace kerf

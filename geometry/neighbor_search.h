@@ -1,0 +1,44 @@
+#pragma once
+// Neighbour search over a point set (a k-d tree from nanoflann, hidden here),
+// and neighbour lists stored once in CSR form.
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+
+namespace kerf {
+
+/// Lists of indices, one list per query: list i is index[start[i] .. start[i+1]).
+struct NeighborLists {
+  std::vector<Index> start{0};
+  std::vector<Index> index;
+  Index size() const { return static_cast<Index>(start.size()) - 1; }
+  std::span<const Index> of(Index i) const {
+    return {index.data() + start[i], static_cast<std::size_t>(start[i + 1] - start[i])};
+  }
+  double mean_length() const { return size() ? static_cast<double>(index.size()) / size() : 0.0; }
+};
+
+/// A k-d tree over points (m; 2D points have z = 0).
+class PointIndex {
+ public:
+  explicit PointIndex(std::vector<Vec3> points);
+  ~PointIndex();
+  PointIndex(const PointIndex&) = delete;
+  PointIndex& operator=(const PointIndex&) = delete;
+
+  /// The points strictly closer than `radius` to x, in increasing index order.
+  void within(const Vec3& x, double radius, std::vector<Index>& out) const;
+  const std::vector<Vec3>& points() const;
+
+ private:
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
+};
+
+/// For each query point x, the nodes I whose support covers it: |x - x_I| < radius[I].
+NeighborLists covering_supports(const PointIndex& nodes, std::span<const double> radius,
+                                std::span<const Vec3> queries);
+
+}  // namespace kerf

@@ -1,0 +1,193 @@
+// MLS shape functions and neighbour search: the quartic weight's derivatives,
+// partition of unity and reproduction of linear (and, with the quadratic
+// basis, quadratic) fields to round-off with their derivatives, on uniform
+// and irregular node sets in 2D and 3D; derivatives against finite
+// differences; a support too small to invert is reported, not patched.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "discretization/meshless/mls_shape.h"
+#include "geometry/neighbor_search.h"
+
+namespace kerf {
+namespace {
+
+struct NodeSet {
+  std::vector<Vec3> nodes;
+  std::vector<double> radii;
+};
+
+/// A lattice of spacing h over [0, 1]^dim, jittered by `jitter` * h, support 2.2 h.
+NodeSet lattice(int dim, double h, double jitter, unsigned seed = 3) {
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<double> offset(-jitter * h, jitter * h);
+  NodeSet s;
+  int n = static_cast<int>(std::round(1.0 / h));
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (int k = 0; k <= (dim == 3 ? n : 0); ++k) {
+        Vec3 x(i * h + offset(random), j * h + offset(random), dim == 3 ? k * h + offset(random) : 0.0);
+        s.nodes.push_back(x);
+        s.radii.push_back(2.2 * h * (1.0 + 0.5 * x.x()));  // graded supports
+      }
+  return s;
+}
+
+/// The shape functions at x of the nodes whose supports cover it.
+struct Evaluation {
+  std::vector<Index> neighbors;
+  MlsShape shape;
+  bool ok = false;
+};
+Evaluation evaluate(int dim, MlsBasis basis, const NodeSet& s, const Vec3& x, bool hessians = true) {
+  Evaluation e;
+  std::vector<Vec3> near;
+  std::vector<double> radii;
+  for (std::size_t i = 0; i < s.nodes.size(); ++i)
+    if ((x - s.nodes[i]).norm() < s.radii[i]) {
+      e.neighbors.push_back(static_cast<Index>(i));
+      near.push_back(s.nodes[i]);
+      radii.push_back(s.radii[i]);
+    }
+  e.ok = mls_shape_functions(dim, basis, x, near, radii, hessians, e.shape);
+  return e;
+}
+
+TEST(QuarticWeight, ValuesAndDerivatives) {
+  const Vec3 node(0.1, 0.2, 0.3);
+  EXPECT_DOUBLE_EQ(quartic_weight(node, node, 0.5).value, 1.0);
+  EXPECT_EQ(quartic_weight(node + Vec3(0.5, 0, 0), node, 0.5).value, 0.0);
+  EXPECT_NEAR(quartic_weight(node + Vec3(0.499999, 0, 0), node, 0.5).gradient.norm(), 0.0, 1e-9);  // C1 at the edge
+  const double h = 1e-6;
+  for (const Vec3& x : {Vec3(0.3, 0.1, 0.4), Vec3(0.15, 0.25, 0.3), Vec3(0.1, 0.2, 0.31)}) {
+    WeightValue w = quartic_weight(x, node, 0.5);
+    for (int k = 0; k < 3; ++k) {
+      Vec3 e = h * Vec3::Unit(k);
+      WeightValue p = quartic_weight(x + e, node, 0.5), m = quartic_weight(x - e, node, 0.5);
+      EXPECT_NEAR(w.gradient[k], (p.value - m.value) / (2 * h), 1e-7);
+      for (int l = 0; l < 3; ++l) EXPECT_NEAR(w.hessian(l, k), (p.gradient[l] - m.gradient[l]) / (2 * h), 1e-6);
+    }
+  }
+}
+
+struct Case {
+  int dim;
+  MlsBasis basis;
+  double jitter;
+};
+
+class MlsReproduction : public ::testing::TestWithParam<Case> {};
+
+TEST_P(MlsReproduction, ReproducesItsBasisToRoundOff) {
+  const auto [dim, basis, jitter] = GetParam();
+  NodeSet s = lattice(dim, dim == 3 ? 0.25 : 0.125, jitter);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> inside(0.1, 0.9);
+  for (int trial = 0; trial < 10; ++trial) {
+    Vec3 x(inside(random), inside(random), dim == 3 ? inside(random) : 0.0);
+    Evaluation e = evaluate(dim, basis, s, x);
+    ASSERT_TRUE(e.ok) << "condition " << e.shape.condition;
+    double sum = 0.0;
+    Vec3 position = Vec3::Zero(), gradient_sum = Vec3::Zero();
+    Mat3 jacobian = Mat3::Zero(), hessian_sum = Mat3::Zero();
+    Mat3 second_moment = Mat3::Zero();
+    std::vector<Mat3> second_of_products(9, Mat3::Zero());  // d2/dxk dxl of sum phi x_a x_b
+    for (std::size_t I = 0; I < e.neighbors.size(); ++I) {
+      const Vec3& xi = s.nodes[e.neighbors[I]];
+      const double phi = e.shape.value[I];
+      sum += phi;
+      position += phi * xi;
+      gradient_sum += e.shape.gradient[I];
+      jacobian += xi * e.shape.gradient[I].transpose();
+      hessian_sum += e.shape.hessian[I];
+      second_moment += phi * xi * xi.transpose();
+      for (int a = 0; a < 3; ++a)
+        for (int b = 0; b < 3; ++b) second_of_products[3 * a + b] += xi[a] * xi[b] * e.shape.hessian[I];
+    }
+    Mat3 identity = Mat3::Zero();
+    identity.topLeftCorner(dim, dim).setIdentity();
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+    EXPECT_LT((position - x).norm(), 1e-12);
+    EXPECT_LT(gradient_sum.norm(), 1e-10);
+    EXPECT_LT((jacobian - identity).norm(), 1e-10);
+    EXPECT_LT(hessian_sum.norm(), 1e-8);
+    if (basis != MlsBasis::quadratic) continue;
+    // x_a x_b is reproduced, and so is its Hessian, delta_ak delta_bl + delta_al delta_bk.
+    EXPECT_LT((second_moment - x * x.transpose()).norm(), 1e-12);
+    for (int a = 0; a < dim; ++a)
+      for (int b = 0; b < dim; ++b) {
+        Mat3 expected = Mat3::Zero();
+        expected(a, b) += 1.0;
+        expected(b, a) += 1.0;
+        EXPECT_LT((second_of_products[3 * a + b] - expected).norm(), 1e-8) << a << b;
+      }
+  }
+}
+
+TEST_P(MlsReproduction, DerivativesMatchFiniteDifferences) {
+  const auto [dim, basis, jitter] = GetParam();
+  NodeSet s = lattice(dim, dim == 3 ? 0.25 : 0.125, jitter);
+  const Vec3 x(0.43, 0.57, dim == 3 ? 0.38 : 0.0);
+  Evaluation e = evaluate(dim, basis, s, x);
+  ASSERT_TRUE(e.ok);
+  const double h = 1e-6;
+  for (int k = 0; k < dim; ++k) {
+    Vec3 step = h * Vec3::Unit(k);
+    // The same node list on both sides (the step is far from any support edge here).
+    std::vector<Vec3> near;
+    std::vector<double> radii;
+    for (Index i : e.neighbors) near.push_back(s.nodes[i]), radii.push_back(s.radii[i]);
+    MlsShape plus, minus;
+    ASSERT_TRUE(mls_shape_functions(dim, basis, x + step, near, radii, false, plus));
+    ASSERT_TRUE(mls_shape_functions(dim, basis, x - step, near, radii, false, minus));
+    for (std::size_t I = 0; I < near.size(); ++I) {
+      EXPECT_NEAR(e.shape.gradient[I][k], (plus.value[I] - minus.value[I]) / (2 * h), 1e-6);
+      for (int l = 0; l < dim; ++l)
+        EXPECT_NEAR(e.shape.hessian[I](l, k), (plus.gradient[I][l] - minus.gradient[I][l]) / (2 * h), 1e-4);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(UniformAndIrregular, MlsReproduction,
+                         ::testing::Values(Case{2, MlsBasis::linear, 0.0}, Case{2, MlsBasis::quadratic, 0.0},
+                                           Case{3, MlsBasis::linear, 0.0}, Case{3, MlsBasis::quadratic, 0.0},
+                                           Case{2, MlsBasis::linear, 0.3}, Case{2, MlsBasis::quadratic, 0.3},
+                                           Case{3, MlsBasis::linear, 0.3}, Case{3, MlsBasis::quadratic, 0.3}),
+                         [](const auto& info) {
+                           return std::to_string(info.param.dim) + "d_" +
+                                  (info.param.basis == MlsBasis::linear ? "linear" : "quadratic") +
+                                  (info.param.jitter > 0 ? "_irregular" : "_uniform");
+                         });
+
+TEST(Mls, SupportTooSmallToInvertIsReported) {
+  // Three collinear nodes cannot fix a linear field in 3D.
+  std::vector<Vec3> nodes{Vec3(0, 0, 0), Vec3(0.1, 0, 0), Vec3(0.2, 0, 0)};
+  std::vector<double> radii(3, 0.5);
+  MlsShape shape;
+  EXPECT_FALSE(mls_shape_functions(3, MlsBasis::linear, Vec3(0.1, 0.01, 0), nodes, radii, false, shape));
+  EXPECT_GT(shape.condition, 1e12);
+  EXPECT_FALSE(mls_shape_functions(3, MlsBasis::linear, Vec3(5, 5, 5), nodes, radii, false, shape));
+}
+
+TEST(NeighborSearch, MatchesBruteForce) {
+  NodeSet s = lattice(3, 0.1, 0.4);
+  PointIndex index(s.nodes);
+  std::vector<Vec3> queries{Vec3(0.5, 0.5, 0.5), Vec3(0, 0, 0), Vec3(0.93, 0.11, 0.42), Vec3(2, 2, 2)};
+  NeighborLists lists = covering_supports(index, s.radii, queries);
+  ASSERT_EQ(lists.size(), static_cast<Index>(queries.size()));
+  for (std::size_t q = 0; q < queries.size(); ++q) {
+    std::vector<Index> expected;
+    for (std::size_t i = 0; i < s.nodes.size(); ++i)
+      if ((queries[q] - s.nodes[i]).norm() < s.radii[i]) expected.push_back(static_cast<Index>(i));
+    auto found = lists.of(static_cast<Index>(q));
+    EXPECT_EQ(std::vector<Index>(found.begin(), found.end()), expected) << q;
+  }
+  EXPECT_TRUE(lists.of(3).empty());
+  std::vector<Index> close;
+  index.within(Vec3(0.5, 0.5, 0.5), 0.15, close);
+  for (Index i : close) EXPECT_LT((s.nodes[i] - Vec3(0.5, 0.5, 0.5)).norm(), 0.15);
+}
+
+}  // namespace
+}  // namespace kerf
