@@ -1,0 +1,135 @@
+#include "discretization/meshless/node_set.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "core/check.h"
+#include "geometry/boundary_facets.h"
+#include "geometry/delaunay_volumes.h"
+
+namespace kerf {
+namespace {
+
+/// Lattice points of a box: per axis, round(length / spacing) intervals.
+void add_lattice(int dim, const Box& box, double spacing, std::vector<Vec3>& out, std::vector<double>& local) {
+  int count[3] = {0, 0, 0};
+  double step[3] = {0, 0, 0};
+  for (int a = 0; a < dim; ++a) {
+    double length = box.max[a] - box.min[a];
+    count[a] = std::max(1, static_cast<int>(std::lround(length / spacing)));
+    step[a] = length / count[a];
+  }
+  const double mean_step = dim == 3 ? std::cbrt(step[0] * step[1] * step[2]) : std::sqrt(step[0] * step[1]);
+  for (int i = 0; i <= count[0]; ++i)
+    for (int j = 0; j <= count[1]; ++j)
+      for (int k = 0; k <= (dim == 3 ? count[2] : 0); ++k) {
+        out.emplace_back(box.min[0] + i * step[0], box.min[1] + j * step[1], dim == 3 ? box.min[2] + k * step[2] : 0.0);
+        local.push_back(mean_step);
+      }
+}
+
+bool strictly_inside(const Box& box, const Vec3& p, int dim, double tolerance) {
+  for (int a = 0; a < dim; ++a)
+    if (p[a] <= box.min[a] + tolerance || p[a] >= box.max[a] - tolerance) return false;
+  return true;
+}
+
+}  // namespace
+
+NodeSet lattice_nodes(int dim, const Box& box, double spacing, std::span<const RefineRegion> refine,
+                      double support_factor) {
+  NodeSet s;
+  s.dimension = dim;
+  const double tolerance = 1e-9 * (box.max - box.min).norm();
+  std::vector<Vec3> base;
+  std::vector<double> base_spacing;
+  add_lattice(dim, box, spacing, base, base_spacing);
+  // Refine boxes, clipped to the domain, replace the base nodes strictly inside them.
+  std::vector<Box> regions;
+  for (const RefineRegion& r : refine) {
+    Box clipped{r.box.min.cwiseMax(box.min), r.box.max.cwiseMin(box.max)};
+    bool empty = false;
+    for (int a = 0; a < dim; ++a) empty |= clipped.max[a] <= clipped.min[a];
+    if (empty || r.size >= spacing) continue;
+    regions.push_back(clipped);
+    add_lattice(dim, clipped, r.size, s.positions, s.spacing);
+  }
+  for (std::size_t i = 0; i < base.size(); ++i) {
+    bool replaced = std::any_of(regions.begin(), regions.end(),
+                                [&](const Box& r) { return strictly_inside(r, base[i], dim, tolerance); });
+    if (!replaced) s.positions.push_back(base[i]), s.spacing.push_back(base_spacing[i]);
+  }
+  // Overlapping refine boxes or a refine box sharing a face with the lattice
+  // give the same point twice: keep one, with the finer spacing.
+  std::vector<std::size_t> order(s.positions.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  auto key = [&](std::size_t i) {
+    const Vec3& p = s.positions[i];
+    return std::array<long long, 3>{std::llround(p.x() / tolerance), std::llround(p.y() / tolerance),
+                                    std::llround(p.z() / tolerance)};
+  };
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return key(a) < key(b); });
+  std::vector<Vec3> positions;
+  std::vector<double> local;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    std::size_t i = order[k];
+    if (k > 0 && key(order[k - 1]) == key(i)) {
+      local.back() = std::min(local.back(), s.spacing[i]);
+      continue;
+    }
+    positions.push_back(s.positions[i]);
+    local.push_back(s.spacing[i]);
+  }
+  s.positions = std::move(positions);
+  s.spacing = std::move(local);
+  for (double h : s.spacing) s.support.push_back(support_factor * h);
+  s.volume = delaunay_nodal_volumes(s.positions, dim);
+  for (const Vec3& p : s.positions) {
+    bool boundary = false;
+    for (int a = 0; a < dim; ++a)
+      boundary |= std::abs(p[a] - box.min[a]) <= tolerance || std::abs(p[a] - box.max[a]) <= tolerance;
+    s.on_boundary.push_back(boundary);
+  }
+  return s;
+}
+
+NodeSet mesh_nodes(const Mesh& mesh, double support_factor) {
+  const int dim = mesh.dimension, corners = dim + 1;
+  NodeSet s;
+  s.dimension = dim;
+  // Corner nodes only: quadratic meshes' mid-edge nodes are not lattice-like nodes.
+  std::vector<Index> index(mesh.nodes.size(), -1);
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    for (int a = 0; a < corners; ++a) {
+      Index n = mesh.cell(c)[a];
+      if (index[n] < 0) index[n] = static_cast<Index>(s.positions.size()), s.positions.push_back(mesh.nodes[n]);
+    }
+  const Index count = s.size();
+  s.volume.assign(count, 0.0);
+  std::vector<double> edge_sum(count, 0.0);
+  std::vector<int> edge_count(count, 0);
+  for (Index c = 0; c < mesh.cell_count(); ++c) {
+    auto n = mesh.cell(c);
+    double share = std::abs(cell_measure(mesh, c)) / corners;
+    for (int a = 0; a < corners; ++a) {
+      s.volume[index[n[a]]] += share;
+      for (int b = 0; b < corners; ++b) {
+        if (a == b) continue;
+        edge_sum[index[n[a]]] += (mesh.nodes[n[a]] - mesh.nodes[n[b]]).norm();
+        ++edge_count[index[n[a]]];
+      }
+    }
+  }
+  for (Index i = 0; i < count; ++i) {
+    s.spacing.push_back(edge_sum[i] / edge_count[i]);
+    s.support.push_back(support_factor * s.spacing.back());
+  }
+  BoundaryFacets facets = boundary_facets(mesh);
+  s.on_boundary.assign(count, 0);
+  for (Index n : facets.nodes)
+    if (index[n] >= 0) s.on_boundary[index[n]] = 1;
+  return s;
+}
+
+}  // namespace kerf

@@ -1,0 +1,96 @@
+// Meshless node sets: lattices fitted to the box, graded by refine boxes,
+// mesh vertices; nodal volumes add up to the domain; supports follow the local
+// spacing; MLS stays invertible and exact across a refinement transition.
+#include <gtest/gtest.h>
+
+#include "discretization/meshless/mls_shape.h"
+#include "discretization/meshless/node_set.h"
+#include "geometry/neighbor_search.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+double total(const std::vector<double>& v) {
+  double s = 0.0;
+  for (double x : v) s += x;
+  return s;
+}
+
+TEST(NodeSet, RegularLatticeHasExactVolumesAndSupports) {
+  Box box{Vec3(0, 0, 0), Vec3(0.1, 0.02, 0.02)};
+  const double h = 0.005;
+  NodeSet s = lattice_nodes(3, box, h, {}, 2.2);
+  ASSERT_EQ(s.size(), 21 * 5 * 5);
+  EXPECT_NEAR(total(s.volume), 0.1 * 0.02 * 0.02, 1e-12 * 4e-5);
+  int interior = 0;
+  for (Index i = 0; i < s.size(); ++i) {
+    EXPECT_NEAR(s.support[i], 2.2 * h, 1e-15);
+    if (!s.on_boundary[i]) {
+      ++interior;
+      EXPECT_NEAR(s.volume[i], h * h * h, 1e-12 * h * h * h);
+    }
+  }
+  EXPECT_EQ(interior, 19 * 3 * 3);
+}
+
+TEST(NodeSet, PlaneLatticeHasExactAreas) {
+  NodeSet s = lattice_nodes(2, Box{Vec3(0, 0, 0), Vec3(0.1, 0.05, 0)}, 0.01, {}, 2.2);
+  ASSERT_EQ(s.size(), 11 * 6);
+  EXPECT_NEAR(total(s.volume), 0.005, 1e-15);
+  for (Index i = 0; i < s.size(); ++i) EXPECT_EQ(s.positions[i].z(), 0.0);
+}
+
+TEST(NodeSet, RefineBoxesGradeTheLatticeAndKeepTheVolume) {
+  Box box{Vec3(0, 0, 0), Vec3(0.04, 0.04, 0.04)};
+  std::vector<RefineRegion> refine{{Box{Vec3(0.01, 0.01, 0.02), Vec3(0.03, 0.03, 0.04)}, 0.0025}};
+  NodeSet coarse = lattice_nodes(3, box, 0.005, {}, 2.2);
+  NodeSet graded = lattice_nodes(3, box, 0.005, refine, 2.2);
+  EXPECT_GT(graded.size(), coarse.size() + 300);
+  EXPECT_NEAR(total(graded.volume), 0.04 * 0.04 * 0.04, 1e-12 * 6.4e-5);
+  for (Index i = 0; i < graded.size(); ++i) {
+    EXPECT_GT(graded.volume[i], 0.0);
+    bool in_region = refine[0].box.contains(graded.positions[i], 1e-12);
+    EXPECT_NEAR(graded.support[i], 2.2 * (in_region ? 0.0025 : 0.005), 1e-15) << graded.positions[i].transpose();
+  }
+  // No node twice.
+  PointIndex index(graded.positions);
+  std::vector<Index> close;
+  for (const Vec3& p : graded.positions) {
+    index.within(p, 1e-6, close);
+    EXPECT_EQ(close.size(), 1u);
+  }
+  // MLS is invertible and exact across the transition of spacing.
+  NeighborLists lists;
+  std::vector<Vec3> samples;
+  for (double x = 0.004; x < 0.036; x += 0.0031) samples.emplace_back(x, 0.02, 0.019);
+  lists = covering_supports(index, graded.support, samples);
+  for (Index q = 0; q < lists.size(); ++q) {
+    std::vector<Vec3> nodes;
+    std::vector<double> radii;
+    for (Index i : lists.of(q)) nodes.push_back(graded.positions[i]), radii.push_back(graded.support[i]);
+    MlsShape shape;
+    ASSERT_TRUE(mls_shape_functions(3, MlsBasis::linear, samples[q], nodes, radii, false, shape))
+        << samples[q].transpose() << " condition " << shape.condition;
+    Vec3 reproduced = Vec3::Zero();
+    for (std::size_t I = 0; I < nodes.size(); ++I) reproduced += shape.value[I] * nodes[I];
+    EXPECT_LT((reproduced - samples[q]).norm(), 1e-12);
+  }
+}
+
+TEST(NodeSet, MeshNodesAreTheCornersWithTheMeshVolume) {
+  Mesh mesh = testing::unit_box_mesh(3, 2, 0.3);
+  NodeSet s = mesh_nodes(mesh, 2.2);
+  EXPECT_LT(s.size(), mesh.node_count());  // mid-edge nodes are left out
+  EXPECT_NEAR(total(s.volume), 1.0, 1e-12);
+  for (Index i = 0; i < s.size(); ++i) {
+    EXPECT_GT(s.spacing[i], 0.05);
+    EXPECT_LT(s.spacing[i], 0.6);
+    const Vec3& p = s.positions[i];
+    bool on_face = (p.array() < 1e-12).any() || (p.array() > 1 - 1e-12).any();
+    EXPECT_EQ(static_cast<bool>(s.on_boundary[i]), on_face) << p.transpose();
+  }
+}
+
+}  // namespace
+}  // namespace kerf
