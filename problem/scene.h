@@ -147,18 +147,16 @@ struct Probe {
 
 struct OutputOptions {
   std::string dir;       // resolved: absolute or relative to the working directory
-  int vtk_every = 0;     // 0 = no VTK output
+  int vtk_every = 10;    // 0 = no VTK output
   std::vector<Probe> probes;
 };
 
 struct Scene {
   std::string name = "scene";
   std::string file;        // the scene file ("" when built in code)
-  std::string directory;   // its folder, for relative paths
   int dimension = 3;
   std::optional<Box> box;
   std::string mesh_file;   // resolved path when domain.mesh is used
-  SourceLocation domain_where;
   Material material;
   Discretization discretization;
   std::vector<BoundaryCondition> boundary;
@@ -169,10 +167,35 @@ struct Scene {
   OutputOptions output;
 };
 
-const char* to_string(MaterialModel);
-const char* to_string(Method);
-const char* to_string(ElementType);
-const char* to_string(Integrator);
-const char* to_string(LinearSolverKind);
+/// The scene file's spelling of each value of an enum, in declaration order:
+/// the reader, `to_string` and the resolved-scene echo all use these.
+template <class E>
+struct EnumNames;
+#define KERF_ENUM_NAMES(Enum, ...)                                  \
+  template <>                                                       \
+  struct EnumNames<Enum> {                                          \
+    static constexpr auto names = std::to_array<const char*>({__VA_ARGS__}); \
+  }
+KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean");
+KERF_ENUM_NAMES(Method, "fem", "efg", "nodal");
+KERF_ENUM_NAMES(ElementType, "tet4", "tet10", "tri3", "tri6");
+KERF_ENUM_NAMES(NodePlacement, "lattice", "mesh");
+KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
+KERF_ENUM_NAMES(WeightFunction, "quartic");
+KERF_ENUM_NAMES(EssentialMethod, "penalty", "nitsche");
+KERF_ENUM_NAMES(Analysis, "static", "dynamic");
+KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
+KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");
+KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
+KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
+KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
+KERF_ENUM_NAMES(FemCut, "remesh", "remove");
+KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "energy");
+#undef KERF_ENUM_NAMES
+
+template <class E>
+const char* to_string(E value) {
+  return EnumNames<E>::names[static_cast<std::size_t>(value)];
+}
 
 }  // namespace kerf

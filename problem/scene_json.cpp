@@ -44,20 +44,18 @@ json boundary_json(const BoundaryCondition& bc, int dim) {
 }
 
 json cut_json(const Cut& c, int dim) {
-  static const char* enrichment[] = {"grid", "multiplicative", "single", "visibility", "diffraction"};
   json vertices = json::array();
   for (const Vec3& v : c.vertices) vertices.push_back(vec(v, dim));
   json j = {{c.is_strip ? "strip" : "polyline", vertices},
             {"times", c.times},
-            {"enrichment", enrichment[static_cast<int>(c.enrichment)]},
-            {"grid", {{"spacing", c.grid_spacing}, {"lookup", c.grid_lookup == GridLookup::exact ? "exact" : "interpolated"}}},
-            {"fem", c.fem == FemCut::remesh ? "remesh" : "remove"}};
+            {"enrichment", to_string(c.enrichment)},
+            {"grid", {{"spacing", c.grid_spacing}, {"lookup", to_string(c.grid_lookup)}}},
+            {"fem", to_string(c.fem)}};
   return j;
 }
 
 json probe_json(const Probe& p, int dim) {
-  static const char* fields[] = {"displacement", "reaction", "indentation", "energy"};
-  json j = {{"name", p.name}, {"field", fields[static_cast<int>(p.field)]}};
+  json j = {{"name", p.name}, {"field", to_string(p.field)}};
   if (p.point) j["point"] = vec(*p.point, dim);
   if (p.select) j["select"] = selection_json(*p.select, dim);
   if (p.contact) j["contact"] = *p.contact;
@@ -90,13 +88,13 @@ json scene_to_json(const Scene& s) {
       {"fem", {{"element", to_string(d.fem.element)}, {"size", d.fem.size}}},
       {"refine", refine},
       {"meshless",
-       {{"nodes", ml.nodes == NodePlacement::lattice ? "lattice" : "mesh"},
+       {{"nodes", to_string(ml.nodes)},
         {"spacing", ml.spacing},
         {"support", ml.support},
-        {"basis", ml.basis == MlsBasis::linear ? "linear" : "quadratic"},
-        {"weight", "quartic"},
+        {"basis", to_string(ml.basis)},
+        {"weight", to_string(ml.weight)},
         {"quadrature", {{"order", ml.quadrature_order}}},
-        {"essential", ml.essential == EssentialMethod::penalty ? "penalty" : "nitsche"},
+        {"essential", to_string(ml.essential)},
         {"stabilization", ml.stabilization}}}};
   json boundary = json::array();
   for (const auto& bc : s.boundary) boundary.push_back(boundary_json(bc, dim));
@@ -114,7 +112,7 @@ json scene_to_json(const Scene& s) {
   for (const auto& c : s.cuts) cuts.push_back(cut_json(c, dim));
   j["cuts"] = cuts;
   const SolveOptions& so = s.solve;
-  j["solve"] = {{"analysis", so.analysis == Analysis::static_analysis ? "static" : "dynamic"},
+  j["solve"] = {{"analysis", to_string(so.analysis)},
                 {"integrator", to_string(so.integrator)},
                 {"dt", so.dt},
                 {"duration", so.duration},
@@ -126,7 +124,7 @@ json scene_to_json(const Scene& s) {
                 {"linear_solver", to_string(so.linear_solver)},
                 {"petsc", so.petsc},
                 {"linear_tolerance", so.linear_tolerance},
-                {"mass", so.mass == MassKind::lumped ? "lumped" : "consistent"}};
+                {"mass", to_string(so.mass)}};
   json probes = json::array();
   for (const auto& p : s.output.probes) probes.push_back(probe_json(p, dim));
   j["output"] = {{"dir", s.output.dir},

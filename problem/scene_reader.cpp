@@ -28,7 +28,8 @@ Box read_box(const YamlField& f, int dim) {
 }
 
 int read_axis(const YamlField& f, int dim) {
-  int axis = f.choice({"x", "y", "z"});
+  static constexpr std::array<const char*, 3> axes{"x", "y", "z"};
+  int axis = f.choice(axes);
   if (axis >= dim) f.out_of_range("x or y in 2D");
   return axis;
 }
@@ -93,7 +94,7 @@ BoundaryCondition read_boundary_item(const YamlField& f, int dim) {
 void read_material(const YamlField& f, Material& m) {
   f.allow_only({"model", "young", "poisson", "density", "damping"});
   if (f.has("model"))
-    m.model = static_cast<MaterialModel>(f["model"].choice({"linear", "corotational", "stvk", "neohookean"}));
+    m.model = f["model"].enumeration<MaterialModel>();
   if (f.has("young")) m.young = f["young"].number();
   if (!(m.young > 0.0)) f["young"].out_of_range("young > 0 (Pa)");
   if (f.has("poisson")) m.poisson = f["poisson"].number();
@@ -111,21 +112,21 @@ void read_material(const YamlField& f, Material& m) {
 }
 
 void read_discretization(const YamlField& f, int dim, Discretization& d) {
+  if (dim == 2) d.fem.element = ElementType::tri3;
+  if (f.is_null()) return;
   f.allow_only({"method", "fem", "refine", "meshless"});
-  if (f.has("method")) d.method = static_cast<Method>(f["method"].choice({"fem", "efg", "nodal"}));
+  if (f.has("method")) d.method = f["method"].enumeration<Method>();
   if (f.has("fem")) {
     YamlField fe = f["fem"];
     fe.allow_only({"element", "size"});
     if (fe.has("element"))
-      d.fem.element = static_cast<ElementType>(fe["element"].choice({"tet4", "tet10", "tri3", "tri6"}));
+      d.fem.element = fe["element"].enumeration<ElementType>();
     if (fe.has("size")) d.fem.size = fe["size"].number();
     require_positive(fe["size"], d.fem.size, "size > 0 (m)");
     bool is_3d_element = d.fem.element == ElementType::tet4 || d.fem.element == ElementType::tet10;
     if (is_3d_element != (dim == 3))
       fe["element"].fail("value '" + std::string(to_string(d.fem.element)) + "' does not fit dimension " +
                          std::to_string(dim) + "; expected " + (dim == 3 ? "tet4 | tet10" : "tri3 | tri6"));
-  } else if (dim == 2) {
-    d.fem.element = ElementType::tri3;
   }
   if (f.has("refine")) {
     YamlField list = f["refine"];
@@ -144,13 +145,13 @@ void read_discretization(const YamlField& f, int dim, Discretization& d) {
     YamlField m = f["meshless"];
     m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization"});
     MeshlessOptions& o = d.meshless;
-    if (m.has("nodes")) o.nodes = static_cast<NodePlacement>(m["nodes"].choice({"lattice", "mesh"}));
+    if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
     require_positive(m["spacing"], o.spacing, "spacing > 0 (m)");
     if (m.has("support")) o.support = m["support"].number();
     if (!(o.support > 1.0)) m["support"].out_of_range("support > 1 (a multiple of the spacing)");
-    if (m.has("basis")) o.basis = static_cast<MlsBasis>(m["basis"].choice({"linear", "quadratic"}));
-    if (m.has("weight")) o.weight = static_cast<WeightFunction>(m["weight"].choice({"quartic"}));
+    if (m.has("basis")) o.basis = m["basis"].enumeration<MlsBasis>();
+    if (m.has("weight")) o.weight = m["weight"].enumeration<WeightFunction>();
     if (m.has("quadrature")) {
       YamlField q = m["quadrature"];
       q.allow_only({"order"});
@@ -158,7 +159,7 @@ void read_discretization(const YamlField& f, int dim, Discretization& d) {
       if (o.quadrature_order < 1 || o.quadrature_order > 8) q["order"].out_of_range("1 <= order <= 8");
     }
     if (m.has("essential"))
-      o.essential = static_cast<EssentialMethod>(m["essential"].choice({"penalty", "nitsche"}));
+      o.essential = m["essential"].enumeration<EssentialMethod>();
     if (m.has("stabilization")) o.stabilization = m["stabilization"].boolean();
   }
 }
@@ -206,16 +207,15 @@ Cut read_cut(const YamlField& f, int dim) {
     cut.times.assign(cut.vertices.size(), 0.0);
   }
   if (f.has("enrichment"))
-    cut.enrichment = static_cast<Enrichment>(
-        f["enrichment"].choice({"grid", "multiplicative", "single", "visibility", "diffraction"}));
+    cut.enrichment = f["enrichment"].enumeration<Enrichment>();
   if (f.has("grid")) {
     YamlField g = f["grid"];
     g.allow_only({"spacing", "lookup"});
     if (g.has("spacing")) cut.grid_spacing = g["spacing"].number();
     require_positive(g["spacing"], cut.grid_spacing, "spacing > 0 (m)");
-    if (g.has("lookup")) cut.grid_lookup = static_cast<GridLookup>(g["lookup"].choice({"exact", "interpolated"}));
+    if (g.has("lookup")) cut.grid_lookup = g["lookup"].enumeration<GridLookup>();
   }
-  if (f.has("fem")) cut.fem = static_cast<FemCut>(f["fem"].choice({"remesh", "remove"}));
+  if (f.has("fem")) cut.fem = f["fem"].enumeration<FemCut>();
   return cut;
 }
 
@@ -228,10 +228,9 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   if (f.is_null()) return;
   f.allow_only({"analysis", "integrator", "dt", "duration", "newton", "linear_solver", "petsc",
                 "linear_tolerance", "mass", "load_steps"});
-  if (f.has("analysis")) s.analysis = static_cast<Analysis>(f["analysis"].choice({"static", "dynamic"}));
+  if (f.has("analysis")) s.analysis = f["analysis"].enumeration<Analysis>();
   if (f.has("integrator"))
-    s.integrator = static_cast<Integrator>(
-        f["integrator"].choice({"implicit-euler", "newmark", "central-difference"}));
+    s.integrator = f["integrator"].enumeration<Integrator>();
   if (f.has("dt")) s.dt = f["dt"].number();
   require_positive(f["dt"], s.dt, "dt > 0 (s)");
   if (f.has("duration")) s.duration = f["duration"].number();
@@ -251,12 +250,12 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
     if (n.has("line_search")) s.newton.line_search = n["line_search"].boolean();
   }
   if (f.has("linear_solver"))
-    s.linear_solver = static_cast<LinearSolverKind>(f["linear_solver"].choice({"cholmod", "petsc", "cg", "ldlt"}));
+    s.linear_solver = f["linear_solver"].enumeration<LinearSolverKind>();
   if (f.has("petsc")) s.petsc = f["petsc"].text();
   if (f.has("linear_tolerance")) s.linear_tolerance = f["linear_tolerance"].number();
   if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
     f["linear_tolerance"].out_of_range("0 < linear_tolerance < 1 (relative residual)");
-  if (f.has("mass")) s.mass = static_cast<MassKind>(f["mass"].choice({"lumped", "consistent"}));
+  if (f.has("mass")) s.mass = f["mass"].enumeration<MassKind>();
 }
 
 Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
@@ -268,7 +267,7 @@ Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
   if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
     f["name"].fail("value " + f["name"].value_text() + " is not a usable name; expected text without commas or quotes");
   if (!f.has("field")) f.fail("missing 'field': displacement | reaction | indentation | energy");
-  p.field = static_cast<ProbeField>(f["field"].choice({"displacement", "reaction", "indentation", "energy"}));
+  p.field = f["field"].enumeration<ProbeField>();
   if (f.has("point")) p.point = f["point"].vector(dim);
   if (f.has("select")) p.select = read_selection(f["select"], dim);
   if (f.has("contact")) {
@@ -295,15 +294,13 @@ Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
 
 void read_output(const YamlField& f, const Scene& scene, OutputOptions& o) {
   o.dir = "results/" + scene.name;
-  o.vtk_every = 10;
   if (f.is_null()) return;
   f.allow_only({"dir", "vtk", "probes"});
   if (f.has("dir")) o.dir = f["dir"].text();
   if (f.has("vtk")) {
     YamlField v = f["vtk"];
     if (v.node().IsScalar()) {
-      if (v.boolean()) o.vtk_every = 10;
-      else o.vtk_every = 0;
+      if (!v.boolean()) o.vtk_every = 0;  // true keeps the default
     } else {
       v.allow_only({"every"});
       if (v.has("every")) o.vtk_every = v["every"].integer();
@@ -331,7 +328,6 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
                   "contact", "cuts", "solve", "output"});
   Scene scene;
   scene.file = file;
-  scene.directory = directory;
   if (top.has("name")) scene.name = top["name"].text();
   if (scene.name.empty() || scene.name.find('/') != std::string::npos)
     top["name"].fail("value " + top["name"].value_text() + " is not a usable name; expected text without '/'");
@@ -342,7 +338,6 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
   YamlField domain = top["domain"];
   if (domain.is_null()) top.fail("missing 'domain': expected box: {min, max} or mesh: FILE.msh");
   domain.allow_only({"box", "mesh"});
-  scene.domain_where = domain.location();
   if (domain.exactly_one_of({"box", "mesh"}) == "box") {
     scene.box = read_box(domain["box"], dim);
     for (int i = 0; i < dim; ++i)
@@ -357,10 +352,7 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
   }
 
   if (top.has("material")) read_material(top["material"], scene.material);
-  if (top.has("discretization"))
-    read_discretization(top["discretization"], dim, scene.discretization);
-  else if (dim == 2)
-    scene.discretization.fem.element = ElementType::tri3;
+  read_discretization(top["discretization"], dim, scene.discretization);
 
   if (top.has("boundary")) {
     YamlField list = top["boundary"];

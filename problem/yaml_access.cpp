@@ -196,7 +196,7 @@ std::array<std::optional<double>, 3> YamlField::optional_vector(int dimension) c
   return v;
 }
 
-int YamlField::choice(std::initializer_list<const char*> choices) const {
+int YamlField::choice(std::span<const char* const> choices) const {
   std::string value = text();
   int index = 0;
   std::string list;

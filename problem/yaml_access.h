@@ -5,6 +5,7 @@
 
 #include <initializer_list>
 #include <optional>
+#include <span>
 #include <set>
 #include <string>
 #include <vector>
@@ -47,7 +48,12 @@ class YamlField {
   std::array<std::optional<double>, 3> optional_vector(int dimension) const;
   std::vector<double> numbers() const;
   /// One of `choices`, returned as its position in the list.
-  int choice(std::initializer_list<const char*> choices) const;
+  int choice(std::span<const char* const> choices) const;
+  /// A value of an enum, spelled as EnumNames<E> says.
+  template <class E>
+  E enumeration() const {
+    return static_cast<E>(choice(EnumNames<E>::names));
+  }
 
   [[noreturn]] void fail(const std::string& problem) const;
   /// "value V is out of range; expected EXPECTED"
