@@ -13,9 +13,10 @@ namespace kerf {
 /// Where a value came from, for error messages: "scene.yaml:12:5 (material.poisson)".
 struct SourceLocation {
   std::string file;
-  int line = 0;    // 1-based; 0 = not from the file (a default or --set)
+  int line = 0;    // 1-based; 0 = unknown (built in code); a missing key points at its parent
   int column = 0;  // 1-based
   std::string key; // dotted path, e.g. "boundary.1.traction"
+  bool command_line = false;  // the value came from --set
   std::string describe() const;
 };
 

@@ -32,33 +32,32 @@ std::string join_key(const std::string& parent, const std::string& child) {
 
 std::string SourceLocation::describe() const {
   std::ostringstream out;
-  if (line > 0)
+  if (command_line)
+    out << file << ": key '" << key << "' (set on the command line)";
+  else if (line > 0)
     out << file << ":" << line << ":" << column << ": key '" << key << "'";
   else if (!file.empty())
-    out << file << ": key '" << key << "' (set on the command line)";
+    out << file << ": key '" << key << "'";
   else
     out << "key '" << key << "'";
   return out.str();
 }
 
 YamlField::YamlField(YAML::Node node, std::string key, const std::string* file,
-                     const std::set<std::string>* overridden)
-    : node_(std::move(node)), key_(std::move(key)), file_(file), overridden_(overridden) {}
+                     const std::set<std::string>* overridden, YAML::Mark parent)
+    : node_(std::move(node)), parent_(parent), key_(std::move(key)), file_(file), overridden_(overridden) {}
 
 SourceLocation YamlField::location() const {
   SourceLocation where;
   where.file = file_ ? *file_ : std::string();
   where.key = key_;
-  bool from_command_line = false;
   if (overridden_)
     for (const auto& prefix : *overridden_)
-      if (key_ == prefix || key_.rfind(prefix + ".", 0) == 0) from_command_line = true;
-  if (node_ && !from_command_line) {
-    YAML::Mark mark = node_.Mark();
-    if (mark.line >= 0) {
-      where.line = mark.line + 1;
-      where.column = mark.column + 1;
-    }
+      if (key_ == prefix || key_.rfind(prefix + ".", 0) == 0) where.command_line = true;
+  YAML::Mark mark = node_ ? node_.Mark() : parent_;
+  if (mark.line >= 0) {
+    where.line = mark.line + 1;
+    where.column = mark.column + 1;
   }
   return where;
 }
@@ -71,20 +70,22 @@ bool YamlField::has(const std::string& child) const {
 
 YamlField YamlField::operator[](const std::string& child) const {
   YAML::Node value = node_ && node_.IsMap() ? node_[child] : YAML::Node();
-  // Keep a located node for messages about a missing child: point at the parent.
-  return YamlField(value, join_key(key_, child), file_, overridden_);
+  return YamlField(value, join_key(key_, child), file_, overridden_, present_mark());
 }
 
 YamlField YamlField::operator[](std::size_t index) const {
-  return YamlField(node_[index], join_key(key_, std::to_string(index)), file_, overridden_);
+  return YamlField(node_[index], join_key(key_, std::to_string(index)), file_, overridden_, present_mark());
 }
+
+YAML::Mark YamlField::present_mark() const { return node_ ? node_.Mark() : parent_; }
 
 void YamlField::fail(const std::string& problem) const {
   throw Error(location().describe() + ": " + problem);
 }
 
 std::string YamlField::value_text() const {
-  if (!node_ || node_.IsNull()) return "null";
+  if (!node_) return "nothing (the key is missing)";
+  if (node_.IsNull()) return "null";
   if (node_.IsScalar()) return "'" + node_.Scalar() + "'";
   YAML::Emitter out;
   out << YAML::Flow << node_;
@@ -115,7 +116,7 @@ void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
     }
     std::string list;
     for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-    YamlField child(entry.first, join_key(key_, name), file_, overridden_);
+    YamlField child(entry.first, join_key(key_, name), file_, overridden_, present_mark());
     child.fail("unknown key '" + name + "'" +
                (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") +
                "; expected one of: " + list);

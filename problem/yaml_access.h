@@ -15,10 +15,11 @@
 namespace kerf {
 
 /// One YAML node together with its dotted key; the root carries the file name.
+/// A missing key is a field too: it points at its nearest present parent.
 class YamlField {
  public:
   YamlField(YAML::Node node, std::string key, const std::string* file,
-            const std::set<std::string>* overridden);
+            const std::set<std::string>* overridden, YAML::Mark parent = YAML::Mark::null_mark());
 
   const YAML::Node& node() const { return node_; }
   const std::string& key() const { return key_; }
@@ -59,9 +60,12 @@ class YamlField {
   /// "value V is out of range; expected EXPECTED"
   [[noreturn]] void out_of_range(const std::string& expected) const;
   std::string value_text() const;
+  /// The position of this node, or of its nearest present ancestor.
+  YAML::Mark present_mark() const;
 
  private:
   YAML::Node node_;
+  YAML::Mark parent_;  // where the nearest present ancestor starts
   std::string key_;
   const std::string* file_;
   const std::set<std::string>* overridden_;

@@ -69,6 +69,14 @@ TEST(SceneReader, OutOfRangeValueNamesKeyValueAndRange) {
                   "0 < linear_tolerance < 1");
 }
 
+TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
+  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
+  expect_contains(m, "test.yaml:3:");
+  expect_contains(m, "boundary.0.select.plane.at");
+  expect_contains(m, "the key is missing");
+  EXPECT_EQ(m.find("command line"), std::string::npos) << m;
+}
+
 TEST(SceneReader, WrongTypesAndShapesAreRefused) {
   expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: soft}\n"),
                   "expected a number, found 'soft'");
