@@ -19,9 +19,6 @@ struct RunReport {
   void add_stage(const std::string& stage) {
     if (std::find(stages.begin(), stages.end(), stage) == stages.end()) stages.push_back(stage);
   }
-  bool has_stage(const std::string& stage) const {
-    return std::find(stages.begin(), stages.end(), stage) != stages.end();
-  }
 };
 
 }  // namespace kerf

@@ -3,18 +3,14 @@
 #include <chrono>
 #include <map>
 #include <string>
-#include <vector>
 
 namespace kerf {
 
-/// Accumulated seconds per phase (setup, assembly, factorize, solve, cut_update, output).
+/// Accumulated seconds per phase (setup, assembly, factorize, solve, cut_update,
+/// output). Timers of different phases never nest, so the phases add up.
 class PhaseTimes {
  public:
   void add(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
-  double seconds(const std::string& phase) const {
-    auto it = seconds_.find(phase);
-    return it == seconds_.end() ? 0.0 : it->second;
-  }
   const std::map<std::string, double>& all() const { return seconds_; }
 
  private:

@@ -17,7 +17,6 @@ struct NeighborLists {
   std::span<const Index> of(Index i) const {
     return {index.data() + start[i], static_cast<std::size_t>(start[i + 1] - start[i])};
   }
-  double mean_length() const { return size() ? static_cast<double>(index.size()) / size() : 0.0; }
 };
 
 /// A k-d tree over points (m; 2D points have z = 0).

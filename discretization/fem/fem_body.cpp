@@ -59,6 +59,7 @@ FemBody::FemBody(const Scene& scene, Mesh mesh)
   auto box = bounding_box(mesh_);
   domain_size_ = (box[1] - box[0]).norm();
   npc_ = mesh_.nodes_per_cell();
+  mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
   QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
   nqp_ = static_cast<int>(rule.points.size());
   const Index C = mesh_.cell_count();
@@ -187,7 +188,7 @@ void FemBody::visit_couplings(const CouplingVisitor& visit) const {
 
 Eigen::MatrixXd FemBody::element_scalar_mass(Index c) const {
   const int dim = mesh_.dimension;
-  QuadratureRule rule = simplex_quadrature(dim, 2 * mesh_.order);
+  const QuadratureRule& rule = mass_rule_;
   auto nodes = mesh_.cell(c);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(npc_, npc_);
   std::vector<double> N(npc_), dN(npc_ * dim);

@@ -6,6 +6,7 @@
 
 #include "core/run_report.h"
 #include "discretization/discrete_body.h"
+#include "discretization/fem/simplex_quadrature.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cell_schedule.h"
 #include "geometry/mesh.h"
@@ -63,6 +64,7 @@ class FemBody final : public DiscreteBody {
   int nqp_;                    // stiffness quadrature points per cell
   std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
   std::vector<double> wdet_;   // C * nqp: weight * det J (m^3, or m^2 in 2D)
+  QuadratureRule mass_rule_;   // exact for N_a N_b
   Vector load_;                // dead loads: gravity, traction, pressure (N)
   std::vector<DirichletDof> dirichlet_;
 };
