@@ -106,7 +106,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     columns.insert(columns.begin(), "time");
     ProbeTable table(outcome.directory + "/probes.csv", columns);
     EnergyState energy;
-    Vector reaction, f_before, f_after;
+    Vector reaction, load_before, load_after, u_before;
     auto observe = [&](bool final_step) {
       ScopedTimer timer(report.phases, "output");
       if (probes.needs_reaction()) reaction = stepper->reaction(state);
@@ -130,24 +130,20 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     const double dt = stepper->time_step();
     const bool static_run = scene.solve.analysis == Analysis::static_analysis;
     const int output_every = every > 0 ? every : 1;
+    if (probes.needs_energy()) stepper->applied_load(state, load_before);
     const double loop_start = now_seconds();
     for (int i = 1; i <= steps; ++i) {
       KERF_CHECK(!interrupted, "interrupted (Ctrl-C) at step ", i, " of ", steps,
                  "; the results written so far are complete and readable");
-      Vector u_before;
-      if (probes.needs_energy()) {
-        body->external_force(state.t, f_before);
-        u_before = state.u;
-      }
+      if (probes.needs_energy()) u_before = state.u;
       double step_start = now_seconds();
       stepper->advance(state, dt);
       report.step_seconds.push_back(now_seconds() - step_start);
       report.counters["newton_iterations"] += stepper->last_iterations();
-      if (probes.needs_energy()) {
-        // Trapezoidal work of the external loads (static: scaled by the load factor).
-        body->external_force(state.t, f_after);
-        double before = static_run ? state.t - dt : 1.0, after = static_run ? state.t : 1.0;
-        energy.external_work += 0.5 * (before * f_before + after * f_after).dot(state.u - u_before);
+      if (probes.needs_energy()) {  // trapezoidal work of the applied loads
+        stepper->applied_load(state, load_after);
+        energy.external_work += 0.5 * (load_before + load_after).dot(state.u - u_before);
+        load_before.swap(load_after);
       }
       bool last = i == steps;
       bool output_step = last || (static_run ? true : i % output_every == 0);

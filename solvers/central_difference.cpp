@@ -88,6 +88,7 @@ class CentralDifferenceStepper final : public Stepper {
     body_.external_force(s.t, f_ext_);
     return r + mass_.cwiseProduct(s.a + alpha_ * s.v) - f_ext_;
   }
+  void applied_load(const SolverState& s, Vector& f) const override { body_.external_force(s.t, f); }
   double time_step() const override { return options_.dt; }
   int step_count() const override {
     return std::max(1, static_cast<int>(std::llround(options_.duration / options_.dt)));

@@ -34,8 +34,7 @@ class StaticStepper final : public Stepper {
   void advance(SolverState& s, double) override {
     // From the step count, so the last step is exactly the full load.
     const double load = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
-    body_.external_force(load, f_ext_);
-    f_ext_ *= load;
+    load_at(load, f_ext_);
     std::vector<DirichletDof> prescribed = body_.dirichlet(load);
     for (DirichletDof& d : prescribed) d.value *= load;
     std::ostringstream where;
@@ -54,14 +53,21 @@ class StaticStepper final : public Stepper {
   Vector reaction(const SolverState& s) override {
     Vector r;
     system_.internal_force(s.u, r, false);
-    body_.external_force(s.t, f_ext_);
-    return r - s.t * f_ext_;
+    applied_load(s, f_ext_);
+    return r - f_ext_;
   }
+  void applied_load(const SolverState& s, Vector& f) const override { load_at(s.t, f); }
   int last_iterations() const override { return result_.iterations; }
   double time_step() const override { return 1.0 / options_.load_steps; }
   int step_count() const override { return options_.load_steps; }
 
  private:
+  /// The dead loads scaled by the load factor (pseudo-time of the static run).
+  void load_at(double factor, Vector& f) const {
+    body_.external_force(factor, f);
+    f *= factor;
+  }
+
   const DiscreteBody& body_;
   SolveOptions options_;
   ImplicitSystem system_;
@@ -123,6 +129,7 @@ class DynamicImplicitStepper : public Stepper {
     if (beta_ != 0.0) r += beta_ * system_.stiffness_times(s.v);
     return r;
   }
+  void applied_load(const SolverState& s, Vector& f) const override { body_.external_force(s.t, f); }
   int last_iterations() const override { return result_.iterations; }
   double time_step() const override { return options_.dt; }
   int step_count() const override {

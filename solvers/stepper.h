@@ -23,6 +23,9 @@ class Stepper {
   virtual double kinetic_energy(const SolverState& state) const = 0;
   /// f_int(u) + M a + C v - f_ext over all dofs: the support reactions at constrained dofs (N).
   virtual Vector reaction(const SolverState& state) = 0;
+  /// The external force the scheme applies at this state (N): f_ext(t), or in a
+  /// static run f_ext scaled by the load factor.
+  virtual void applied_load(const SolverState& state, Vector& f) const = 0;
   /// Linear solves Newton made in the last step (0 for explicit).
   virtual int last_iterations() const { return 0; }
   /// The time step the run uses (s); static: 1 / load_steps.
