@@ -21,7 +21,7 @@ class CentralDifferenceStepper final : public Stepper {
  public:
   CentralDifferenceStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
       : body_(body), options_(scene.solve), alpha_(scene.material.damping_mass),
-        beta_(scene.material.damping_stiffness), free_(body.dof_count(), body.dirichlet(0.0)) {
+        beta_(scene.material.damping_stiffness), constrained_(body.dirichlet(0.0)) {
     ScopedTimer timer(report.phases, "setup");
     report.add_stage("mass");
     mass_ = body_.lumped_mass();
@@ -34,7 +34,7 @@ class CentralDifferenceStepper final : public Stepper {
     report.add_stage("stiffness");
     SparseMatrix K = build_pattern(body_);
     body_.tangent(Vector::Zero(body_.dof_count()), add_into(K), nullptr);
-    EigenvalueBound omega2 = largest_eigenvalue(K, mass_, free_);
+    EigenvalueBound omega2 = largest_eigenvalue(K, mass_, FreeDofs(body_.dof_count(), constrained_));
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
     critical_step_ = damped_critical_step(std::max(lanczos_step, element_bound_step_), beta_);
     report.counters["critical_dt_s"] = critical_step_;
@@ -53,7 +53,7 @@ class CentralDifferenceStepper final : public Stepper {
     const Index n = body_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
-    for (const DirichletDof& d : body_.dirichlet(0.0)) s.u[d.dof] = d.value;
+    for (const DirichletDof& d : constrained_) s.u[d.dof] = d.value;
     body_.external_force(0.0, f_ext_);
     body_.internal_force(s.u, f_int_);
     acceleration(s.v, s.a);
@@ -101,14 +101,13 @@ class CentralDifferenceStepper final : public Stepper {
     zero_constrained(a);
   }
   void zero_constrained(Vector& x) const {
-    for (Index d = 0; d < x.size(); ++d)
-      if (free_.free_index(d) < 0) x[d] = 0.0;
+    for (const DirichletDof& d : constrained_) x[d.dof] = 0.0;
   }
 
   const DiscreteBody& body_;
   SolveOptions options_;
   double alpha_, beta_;
-  FreeDofs free_;
+  std::vector<DirichletDof> constrained_;
   Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_, damped_u_;
   double critical_step_ = 0.0;
   double element_bound_step_ = 0.0;

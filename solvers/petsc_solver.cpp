@@ -81,9 +81,10 @@ class PetscSolver final : public LinearSolver {
   }
 
   LinearSolverStatus factorize(const SparseMatrix& A) override {
+    std::vector<PetscInt> cols;  // PetscInt may be wider than kerf's Index
     for (PetscInt r = first_; r < end_; ++r) {
       Index begin = A.outerIndexPtr()[r], count = A.outerIndexPtr()[r + 1] - begin;
-      std::vector<PetscInt> cols(A.innerIndexPtr() + begin, A.innerIndexPtr() + begin + count);
+      cols.assign(A.innerIndexPtr() + begin, A.innerIndexPtr() + begin + count);
       check(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, INSERT_VALUES), "MatSetValues");
     }
     check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
