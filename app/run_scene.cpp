@@ -146,7 +146,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
         load_before.swap(load_after);
       }
       bool last = i == steps;
-      bool output_step = last || (static_run ? true : i % output_every == 0);
+      bool output_step = last || static_run || i % output_every == 0;
       if (output_step) observe(last);
       if (!options.quiet && (last || i % std::max(1, steps / 10) == 0))
         std::fprintf(stderr, "kerf: %s step %d/%d  t = %.6g  (%.3g s)\n", scene.name.c_str(), i, steps, state.t,
