@@ -4,7 +4,7 @@
 
 namespace kerf {
 
-ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : dim_(body.dofs_per_node()) {
+ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : body_(body), dim_(body.dofs_per_node()) {
   for (const Probe& p : scene.output.probes) {
     Resolved r{p, {}, {}};
     switch (p.field) {
@@ -73,9 +73,13 @@ std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState&
       break;
     case ProbeField::reaction:
       v.assign(dim_, 0.0);
+    {
       for (Index n : r.nodes)
         for (int i = 0; i < dim_; ++i) v[i] += reaction[dim_ * n + i];
+      const Vec3 weak = body_.weak_reaction(state.u, *r.probe.select);
+      for (int i = 0; i < dim_; ++i) v[i] += weak[i];
       break;
+    }
     case ProbeField::indentation:
       break;
     case ProbeField::energy:

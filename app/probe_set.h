@@ -38,6 +38,7 @@ class ProbeSet {
   };
   std::vector<double> probe_values(const Resolved& r, const SolverState& state, const Vector& reaction,
                                    const EnergyState& energy) const;
+  const DiscreteBody& body_;
   std::vector<Resolved> probes_;
   int dim_;
 };

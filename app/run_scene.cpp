@@ -32,23 +32,6 @@ void refuse_unsupported(const Scene& scene) {
              ": cuts are not implemented yet (they arrive with issue 4)");
 }
 
-/// Mean number of other nodes a node is coupled to (shares a cell or support with).
-double mean_neighbors(const DiscreteBody& body) {
-  const int dpn = body.dofs_per_node();
-  std::vector<std::vector<Index>> neighbors(body.node_count());
-  body.visit_couplings([&](std::span<const Index> dofs) {
-    for (std::size_t i = 0; i < dofs.size(); i += dpn)
-      for (std::size_t j = 0; j < dofs.size(); j += dpn)
-        if (i != j) neighbors[dofs[i] / dpn].push_back(dofs[j] / dpn);
-  });
-  double total = 0.0;
-  for (auto& n : neighbors) {
-    std::sort(n.begin(), n.end());
-    total += static_cast<double>(std::unique(n.begin(), n.end()) - n.begin());
-  }
-  return body.node_count() ? total / body.node_count() : 0.0;
-}
-
 json milliseconds_summary(std::vector<double> seconds) {
   if (seconds.empty()) return {{"median", 0.0}, {"mean", 0.0}, {"max", 0.0}};
   std::sort(seconds.begin(), seconds.end());
@@ -96,7 +79,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     summary["counts"] = {{"nodes", body->node_count()},
                          {"dofs", body->dof_count()},
                          {"elements", body->element_count()},
-                         {"neighbors_mean", mean_neighbors(*body)}};
+                         {"neighbors_mean", body->mean_neighbors()}};
     summary["timing"]["setup_s"] = now_seconds() - start;
 
     const int every = scene.output.vtk_every;

@@ -1,38 +1,85 @@
 #include "discretization/body_factory.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 #include "discretization/fem/fem_body.h"
+#include "discretization/meshless/efg_body.h"
+#include "discretization/meshless/nodal_body.h"
 #include "geometry/box_mesher.h"
+#include "geometry/mesh_ordering.h"
 #include "geometry/msh_reader.h"
 
 namespace kerf {
 namespace {
 
-Mesh make_mesh(const Scene& scene) {
-  const FemOptions& fem = scene.discretization.fem;
-  const int order = fem.element == ElementType::tet10 || fem.element == ElementType::tri6 ? 2 : 1;
-  if (!scene.box) {
-    Mesh mesh = read_msh(scene.mesh_file, scene.dimension);
-    return mesh;
-  }
+/// The mesh FEM uses: the scene's mesh file, or gmsh on the box at `size`.
+Mesh make_mesh(const Scene& scene, int order, double size) {
+  if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
   BoxMeshRequest request;
   request.dimension = scene.dimension;
   request.order = order;
   request.min = scene.box->min;
   request.max = scene.box->max;
-  request.size = fem.size;
+  request.size = size;
   for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
   return mesh_box(request);
+}
+
+int fem_order(const Scene& scene) {
+  const ElementType e = scene.discretization.fem.element;
+  return e == ElementType::tet10 || e == ElementType::tri6 ? 2 : 1;
+}
+
+/// Straight-sided linear cells: the corners of each cell (mid-edge nodes dropped and renumbered).
+Mesh linear_cells(const Mesh& mesh) {
+  if (mesh.order == 1) return mesh;
+  Mesh out;
+  out.dimension = mesh.dimension;
+  const int corners = mesh.dimension + 1;
+  std::vector<Index> index(mesh.nodes.size(), -1);
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    for (int a = 0; a < corners; ++a) {
+      Index n = mesh.cell(c)[a];
+      if (index[n] < 0) index[n] = static_cast<Index>(out.nodes.size()), out.nodes.push_back(mesh.nodes[n]);
+      out.cells.push_back(index[n]);
+    }
+  return out;
+}
+
+std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& report) {
+  const MeshlessOptions& options = scene.discretization.meshless;
+  const bool on_mesh_nodes = options.nodes == NodePlacement::mesh || !scene.box;
+  const bool boundary_loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
+                                          [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
+  // A background mesh: EFG's integration cells, where boundary loads are
+  // integrated, the nodes themselves with `nodes: mesh`, the extent of a non-box domain.
+  std::optional<Mesh> background;
+  if (on_mesh_nodes)
+    background = make_mesh(scene, fem_order(scene), scene.discretization.fem.size);
+  else if (scene.discretization.method == Method::efg || boundary_loads)
+    background = make_mesh(scene, 1, options.spacing);
+  if (background) {
+    background = linear_cells(*background);
+    order_for_locality(*background);
+    report.add_stage("mesh");
+  }
+  NodeSet nodes = on_mesh_nodes ? mesh_nodes(*background, options.support)
+                                : lattice_nodes(scene.dimension, *scene.box, options.spacing,
+                                                scene.discretization.refine, options.support);
+  report.add_stage("nodes");
+  MeshlessDomain domain(scene, std::move(nodes), scene.box, std::move(background));
+  report.add_stage("shape functions");
+  if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain));
+  return std::make_unique<EfgBody>(scene, std::move(domain));
 }
 
 }  // namespace
 
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
-  KERF_CHECK(scene.discretization.method == Method::fem, scene.file, ": key 'discretization.method': value '",
-             to_string(scene.discretization.method),
-             "' is not implemented yet (the meshless methods are issue 3); expected fem");
   ScopedTimer timer(report.phases, "setup");
-  Mesh mesh = make_mesh(scene);
+  if (scene.discretization.method != Method::fem) return make_meshless_body(scene, report);
+  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size);
   report.add_stage("mesh");
   return std::make_unique<FemBody>(scene, std::move(mesh));
 }

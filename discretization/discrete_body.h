@@ -89,8 +89,20 @@ class DiscreteBody {
   virtual std::optional<PointInterpolation> interpolation_at(const Vec3& x) const = 0;
   virtual void snapshot(const Vector& u, BodySnapshot& out) const = 0;
 
-  /// Counts for the summary: nodes, dofs, elements (cells or quadrature points), neighbours.
+  /// Counts for the summary: cells (FEM) or integration points (meshless).
   virtual Index element_count() const = 0;
+  /// Mean number of other nodes a node is coupled to (FEM: through cells) or
+  /// whose support covers it (meshless).
+  virtual double mean_neighbors() const = 0;
+
+  /// The total force (N) that constraints imposed weakly (EFG penalty or
+  /// Nitsche) on the boundary faces inside `selection` exert on the body at
+  /// displacement u. Zero for strong constraints, whose reactions are read
+  /// from the constrained dofs.
+  virtual Vec3 weak_reaction(const Vector& u, const Selection& selection) const {
+    (void)u, (void)selection;
+    return Vec3::Zero();
+  }
 };
 
 }  // namespace kerf

@@ -62,7 +62,8 @@ Mat9 tangent_from_directions(Directional&& dP) {
 /// X <- (X + X^-T) / 2 converges quadratically for det F > 0 and is several
 /// times cheaper than an SVD; nearly flat or inverted F takes the SVD.
 Mat3 polar_rotation(const Mat3& F) {
-  if (F.determinant() > 1e-3 * std::pow(F.norm() / std::sqrt(3.0), 3)) {
+  const double scale = F.squaredNorm() / 3.0;  // mean squared singular value
+  if (F.determinant() > 1e-3 * scale * std::sqrt(scale)) {
     Mat3 X = F;
     for (int k = 0; k < 30; ++k) {
       Mat3 next = 0.5 * (X + X.inverse().transpose());

@@ -375,9 +375,6 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
     for (std::size_t i = 0; i < list.size(); ++i) scene.cuts.push_back(read_cut(list[i], dim));
   }
   read_solve(top["solve"], scene.discretization.method, scene.solve);
-  if (scene.solve.analysis == Analysis::static_analysis && scene.discretization.method == Method::nodal &&
-      top["solve"].has("analysis"))
-    top["solve"]["analysis"].fail("the nodal method runs dynamic analyses only; expected dynamic");
   read_output(top["output"], scene, scene.output);
   return scene;
 }

@@ -7,22 +7,40 @@
 namespace kerf {
 
 SparseMatrix build_pattern(const DiscreteBody& body) {
-  const Index n = body.dof_count();
-  std::vector<std::vector<Index>> rows(n);
+  // Couplings are gathered node by node (a block holds whole nodes), with
+  // duplicates squeezed out as a list grows: meshless bodies visit each node
+  // pair dozens of times.
+  const int dpn = body.dofs_per_node();
+  const Index nodes = body.node_count(), n = body.dof_count();
+  std::vector<std::vector<Index>> adjacent(nodes);
+  std::vector<std::size_t> unique_size(nodes, 0);
+  auto squeeze = [](std::vector<Index>& list) {
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  };
+  std::vector<Index> block_nodes;
   body.visit_couplings([&](std::span<const Index> dofs) {
-    for (Index r : dofs) rows[r].insert(rows[r].end(), dofs.begin(), dofs.end());
+    KERF_DCHECK(dofs.size() % dpn == 0);  // a coupling block holds whole nodes
+    block_nodes.clear();
+    for (std::size_t i = 0; i < dofs.size(); i += dpn) block_nodes.push_back(dofs[i] / dpn);
+    for (Index a : block_nodes) {
+      auto& list = adjacent[a];
+      list.insert(list.end(), block_nodes.begin(), block_nodes.end());
+      if (list.size() > 2 * unique_size[a] + 256) squeeze(list), unique_size[a] = list.size();
+    }
   });
   SparseMatrix m(n, n);
   std::vector<Index> counts(n);
-  for (Index r = 0; r < n; ++r) {
-    rows[r].push_back(r);
-    std::sort(rows[r].begin(), rows[r].end());
-    rows[r].erase(std::unique(rows[r].begin(), rows[r].end()), rows[r].end());
-    counts[r] = static_cast<Index>(rows[r].size());
+  for (Index a = 0; a < nodes; ++a) {
+    adjacent[a].push_back(a);
+    squeeze(adjacent[a]);
+    for (int i = 0; i < dpn; ++i) counts[dpn * a + i] = static_cast<Index>(adjacent[a].size()) * dpn;
   }
   m.reserve(counts);
-  for (Index r = 0; r < n; ++r)
-    for (Index c : rows[r]) m.insert(r, c) = 0.0;
+  for (Index a = 0; a < nodes; ++a)
+    for (int i = 0; i < dpn; ++i)
+      for (Index b : adjacent[a])
+        for (int k = 0; k < dpn; ++k) m.insert(dpn * a + i, dpn * b + k) = 0.0;
   m.makeCompressed();
   return m;
 }

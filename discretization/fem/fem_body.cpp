@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <map>
 
 #include "core/check.h"
@@ -173,6 +174,22 @@ double FemBody::strain_energy(const Vector& u) const {
   double e = 0.0;
   loop(u, nullptr, nullptr, &e);
   return e;
+}
+
+double FemBody::mean_neighbors() const {
+  std::vector<std::vector<Index>> neighbors(node_count());
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    auto nodes = mesh_.cell(c);
+    for (Index a : nodes)
+      for (Index b : nodes)
+        if (a != b) neighbors[a].push_back(b);
+  }
+  double total = 0.0;
+  for (auto& n : neighbors) {
+    std::sort(n.begin(), n.end());
+    total += static_cast<double>(std::unique(n.begin(), n.end()) - n.begin());
+  }
+  return node_count() ? total / node_count() : 0.0;
 }
 
 void FemBody::visit_couplings(const CouplingVisitor& visit) const {

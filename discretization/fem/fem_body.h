@@ -23,6 +23,7 @@ class FemBody final : public DiscreteBody {
   Index node_count() const override { return mesh_.node_count(); }
   Vec3 node_position(Index node) const override { return mesh_.nodes[node]; }
   Index element_count() const override { return mesh_.cell_count(); }
+  double mean_neighbors() const override;
 
   void visit_couplings(const CouplingVisitor& visit) const override;
   void internal_force(const Vector& u, Vector& f) const override;

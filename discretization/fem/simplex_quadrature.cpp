@@ -50,9 +50,13 @@ QuadratureRule simplex_quadrature(int dim, int degree) {
     rule.weights.assign(3, 1.0 / 6.0);
     return rule;
   }
-  // Collapsed (Duffy) product of Gauss-Legendre rules; the Jacobian
-  // (1-u)^(dim-1) (1-v)^(dim-2) raises the degree to integrate by dim - 1.
-  int n = (degree + dim) / 2 + 1;
+  // The collapsed rule's Jacobian (1-u)^(dim-1) (1-v)^(dim-2) raises the
+  // degree to integrate by dim - 1.
+  return collapsed_gauss(dim, (degree + dim) / 2 + 1);
+}
+
+QuadratureRule collapsed_gauss(int dim, int n) {
+  QuadratureRule rule;
   QuadratureRule g = gauss_legendre_unit(n);
   if (dim == 1) return g;
   for (int i = 0; i < n; ++i)

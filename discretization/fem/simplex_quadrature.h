@@ -14,6 +14,10 @@ struct QuadratureRule {
 
 QuadratureRule simplex_quadrature(int dim, int degree);
 
+/// Collapsed (Duffy) product of Gauss-Legendre rules: n points per direction,
+/// n^dim points, exact to degree 2n - dim.
+QuadratureRule collapsed_gauss(int dim, int n);
+
 /// Gauss-Legendre rule with n points on [0, 1].
 QuadratureRule gauss_legendre_unit(int n);
 

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <vector>
 
+#include "core/denormals.h"
 #include "core/openmp_limit.h"
 #include "discretization/body_factory.h"
 #include "problem/scene_reader.h"
@@ -140,6 +141,7 @@ BENCHMARK(BM_CholmodFactorization)->DenseRange(0, 2)->Unit(benchmark::kMilliseco
 
 int main(int argc, char** argv) {
   kerf::limit_openmp_threads_to_cores(argv);
+  kerf::flush_denormals_to_zero();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

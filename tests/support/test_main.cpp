@@ -1,10 +1,12 @@
 // main() of every GoogleTest executable: the same OpenMP thread cap as `kerf`.
 #include <gtest/gtest.h>
 
+#include "core/denormals.h"
 #include "core/openmp_limit.h"
 
 int main(int argc, char** argv) {
   kerf::limit_openmp_threads_to_cores(argv);
+  kerf::flush_denormals_to_zero();
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
 }

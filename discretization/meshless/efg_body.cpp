@@ -1,0 +1,284 @@
+#include "discretization/meshless/efg_body.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "discretization/critical_step_bound.h"
+#include "discretization/fem/simplex_quadrature.h"
+#include "problem/selection.h"
+
+namespace kerf {
+namespace {
+
+struct CellQuadrature {
+  std::vector<Vec3> position;
+  std::vector<double> weight;
+};
+
+/// Collapsed Gauss points (n per direction) on every straight cell of the mesh.
+CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
+  const int dim = mesh.dimension;
+  QuadratureRule rule = collapsed_gauss(dim, n);
+  CellQuadrature out;
+  for (Index c = 0; c < mesh.cell_count(); ++c) {
+    auto nodes = mesh.cell(c);
+    const Vec3& a = mesh.nodes[nodes[0]];
+    Mat3 J = Mat3::Identity();
+    for (int k = 0; k < dim; ++k) J.col(k) = mesh.nodes[nodes[k + 1]] - a;
+    const double det = std::abs(J.determinant());
+    for (std::size_t q = 0; q < rule.points.size(); ++q) {
+      Vec3 r = rule.points[q];
+      if (dim == 2) r.z() = 0.0;
+      out.position.push_back(a + J * r);
+      out.weight.push_back(rule.weights[q] * det);
+    }
+  }
+  return out;
+}
+
+PointIntegration make_points(const MeshlessDomain& domain, int order) {
+  CellQuadrature q = cell_quadrature(domain.background(), order);
+  return PointIntegration(domain.shapes_at(q.position, "the quadrature point"), std::move(q.weight),
+                          domain.nodes().size());
+}
+
+}  // namespace
+
+EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain)
+    : domain_(std::move(domain)),
+      law_(scene.material),
+      density_(scene.material.density),
+      nitsche_(scene.discretization.meshless.essential == EssentialMethod::nitsche),
+      points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
+  const int dim = domain_.dimension();
+  stress_.resize(points_.point_count());
+  load_ = Vector::Zero(dof_count());
+  const ShapeTable& t = points_.shapes();
+  for (Index p = 0; p < points_.point_count(); ++p) {
+    auto near = t.neighbours.of(p);
+    const double* phi = t.values_of(p);
+    for (std::size_t k = 0; k < near.size(); ++k)
+      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * scene.gravity[i];
+  }
+  domain_.add_boundary_loads(scene, load_);
+  build_constraints(scene);
+}
+
+void EfgBody::build_constraints(const Scene& scene) {
+  const int order = scene.discretization.meshless.quadrature_order;
+  const double factor = nitsche_ ? nitsche_factor : penalty_factor;
+  const NodeSet& nodes = domain_.nodes();
+  for (const BoundaryCondition& bc : scene.boundary) {
+    if (!bc.is_dirichlet() || bc.select.kind == Selection::Kind::point) continue;
+    WeakConstraint c;
+    std::vector<Index> facets = domain_.facets_in(bc.select);
+    c.points = domain_.boundary_points(facets, order);
+    c.shapes = domain_.shapes_at(c.points.position, "the boundary quadrature point");
+    const std::size_t per_facet = c.points.position.size() / facets.size();
+    for (std::size_t q = 0; q < c.points.position.size(); ++q) {
+      c.facet.push_back(facets[q / per_facet]);
+      double h = 0.0;
+      auto near = c.shapes.neighbours.of(static_cast<Index>(q));
+      for (Index I : near) h += nodes.spacing[I];
+      h /= static_cast<double>(near.size());
+      c.alpha.push_back(factor * law_.p_wave_modulus() / h);
+    }
+    for (int i = 0; i < domain_.dimension(); ++i) {
+      if (!bc.fixed[i] && !bc.displacement[i]) continue;
+      c.projection(i, i) = 1.0;
+      c.value[i] = bc.fixed[i] ? 0.0 : *bc.displacement[i];
+    }
+    constraints_.push_back(std::move(c));
+  }
+  dirichlet_ = domain_.nodal_constraints(
+      scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });
+}
+
+double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector& u, Vector* f,
+                                 std::vector<double>* block) const {
+  const int dim = domain_.dimension();
+  auto near = c.shapes.neighbours.of(q);
+  const Index n = static_cast<Index>(near.size()), size = n * dim;
+  const double* phi = c.shapes.values_of(q);
+  const double* g = c.shapes.gradients_of(q);
+  const double w = c.points.weight[q], alpha = c.alpha[q];
+  const Vec3& normal = c.points.normal[q];
+  Vec3 uh = Vec3::Zero();
+  for (Index a = 0; a < n; ++a)
+    for (int i = 0; i < dim; ++i) uh[i] += phi[a] * u[dim * near[a] + i];
+  const Vec3 d = c.projection * (uh - c.value);
+  double energy = 0.5 * w * alpha * d.squaredNorm();
+  Vec3 Pn = Vec3::Zero();
+  std::vector<Mat3> T;  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
+  if (nitsche_) {
+    Mat3 P;
+    Mat9 A;
+    law_.stress_and_tangent(deformation_gradient(c.shapes, q, u), P, A);
+    Pn = c.projection * (P * normal);
+    energy -= w * d.dot(P * normal);
+    T.assign(n, Mat3::Zero());
+    for (Index a = 0; a < n; ++a)
+      for (int j = 0; j < dim; ++j)
+        for (int i = 0; i < dim; ++i)
+          for (int l = 0; l < dim; ++l)
+            for (int m = 0; m < dim; ++m) T[a](j, i) += A(j + 3 * l, i + 3 * m) * g[dim * a + m] * normal[l];
+  }
+  if (f)
+    for (Index a = 0; a < n; ++a)
+      for (int i = 0; i < dim; ++i) {
+        double r = alpha * phi[a] * d[i];
+        if (nitsche_) r -= phi[a] * Pn[i] + d.dot(T[a].col(i));
+        (*f)[dim * near[a] + i] += w * r;
+      }
+  if (block)
+    for (Index a = 0; a < n; ++a)
+      for (Index b = 0; b < n; ++b) {
+        Mat3 K = alpha * phi[a] * phi[b] * c.projection;
+        if (nitsche_) K -= phi[a] * (c.projection * T[b]) + phi[b] * (c.projection * T[a]).transpose();
+        for (int i = 0; i < dim; ++i)
+          for (int k = 0; k < dim; ++k) (*block)[(dim * a + i) * size + dim * b + k] += w * K(i, k);
+      }
+  return energy;
+}
+
+double EfgBody::constraint_terms(const Vector& u, Vector* f) const {
+  double energy = 0.0;
+  for (const WeakConstraint& c : constraints_)
+    for (Index q = 0; q < c.shapes.point_count(); ++q) energy += constraint_point(c, q, u, f, nullptr);
+  return energy;
+}
+
+void EfgBody::internal_force(const Vector& u, Vector& f) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+#pragma omp parallel for schedule(static)
+  for (Index p = 0; p < points_.point_count(); ++p)
+    stress_[p] = points_.weight(p) * law_.stress(deformation_gradient(points_.shapes(), p, u));
+  points_.gather(stress_, {}, f);
+  constraint_terms(u, &f);
+}
+
+double EfgBody::strain_energy(const Vector& u) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  double energy = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (Index p = 0; p < points_.point_count(); ++p)
+    energy += points_.weight(p) * law_.energy(deformation_gradient(points_.shapes(), p, u));
+  return energy + constraint_terms(u, nullptr);
+}
+
+void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  // Blocks are computed in parallel and handed to the sink one at a time (the
+  // blocks of nearby points overlap almost entirely).
+#pragma omp parallel
+  {
+    std::vector<double> block;
+    std::vector<Index> dofs;
+    Mat3 P;
+    Mat9 dPdF;
+#pragma omp for schedule(dynamic, 64)
+    for (Index p = 0; p < points_.point_count(); ++p) {
+      points_.neighbour_dofs(p, dofs);
+      block.assign(dofs.size() * dofs.size(), 0.0);
+      law_.stress_and_tangent(deformation_gradient(points_.shapes(), p, u), P, dPdF);
+      points_.add_material_block(p, dPdF, points_.weight(p), block);
+#pragma omp critical(kerf_efg_sink)
+      sink(dofs, block);
+    }
+  }
+  std::vector<double> block;
+  std::vector<Index> dofs;
+  const int dim = domain_.dimension();
+  for (const WeakConstraint& c : constraints_)
+    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+      dofs.clear();
+      for (Index K : c.shapes.neighbours.of(q))
+        for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+      block.assign(dofs.size() * dofs.size(), 0.0);
+      constraint_point(c, q, u, nullptr, &block);
+      sink(dofs, block);
+    }
+  if (f) internal_force(u, *f);
+}
+
+void EfgBody::visit_couplings(const CouplingVisitor& visit) const {
+  std::vector<Index> dofs;
+  for (Index p = 0; p < points_.point_count(); ++p) {
+    points_.neighbour_dofs(p, dofs);
+    visit(dofs);
+  }
+  // Boundary points couple nodes whose supports reach the boundary: all of
+  // them are neighbours of some cell point too, but say so explicitly.
+  const int dim = domain_.dimension();
+  for (const WeakConstraint& c : constraints_)
+    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+      dofs.clear();
+      for (Index K : c.shapes.neighbours.of(q))
+        for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+      visit(dofs);
+    }
+}
+
+Eigen::MatrixXd EfgBody::point_mass(Index p) const {
+  const Index n = static_cast<Index>(points_.neighbours(p).size());
+  Eigen::Map<const Eigen::VectorXd> phi(points_.shapes().values_of(p), n);
+  return density_ * points_.weight(p) * phi * phi.transpose();
+}
+
+Vector EfgBody::lumped_mass() const {
+  // Row sums of the consistent mass: rho int phi_I (the phi_J add up to one).
+  const int dim = domain_.dimension();
+  Vector m = Vector::Zero(dof_count());
+  const ShapeTable& t = points_.shapes();
+  for (Index p = 0; p < points_.point_count(); ++p) {
+    auto near = t.neighbours.of(p);
+    const double* phi = t.values_of(p);
+    for (std::size_t k = 0; k < near.size(); ++k)
+      for (int i = 0; i < dim; ++i) m[dim * near[k] + i] += density_ * points_.weight(p) * phi[k];
+  }
+  return m;
+}
+
+void EfgBody::consistent_mass(const BlockSink& sink) const {
+  const int dim = domain_.dimension();
+  std::vector<Index> dofs;
+  std::vector<double> block;
+  for (Index p = 0; p < points_.point_count(); ++p) {
+    Eigen::MatrixXd M = point_mass(p);
+    points_.neighbour_dofs(p, dofs);
+    const Index n = M.rows(), size = n * dim;
+    block.assign(size * size, 0.0);
+    for (Index a = 0; a < n; ++a)
+      for (Index b = 0; b < n; ++b)
+        for (int i = 0; i < dim; ++i) block[(dim * a + i) * size + dim * b + i] = M(a, b);
+    sink(dofs, block);
+  }
+}
+
+double EfgBody::critical_time_step() const { return gershgorin_critical_step(*this); }
+
+Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {
+  std::vector<Index> facets = domain_.facets_in(selection, false);
+  std::vector<char> inside(domain_.facets().count(), 0);
+  for (Index f : facets) inside[f] = 1;
+  const int dim = domain_.dimension();
+  Vec3 total = Vec3::Zero();
+  for (const WeakConstraint& c : constraints_)
+    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+      if (!inside[c.facet[q]]) continue;
+      auto near = c.shapes.neighbours.of(q);
+      const double* phi = c.shapes.values_of(q);
+      Vec3 uh = Vec3::Zero();
+      for (std::size_t a = 0; a < near.size(); ++a)
+        for (int i = 0; i < dim; ++i) uh[i] += phi[a] * u[dim * near[a] + i];
+      // The force the support exerts: minus the constraint's share of f_int
+      // summed over the nodes (the Nitsche adjoint term sums to zero).
+      Vec3 force = -c.alpha[q] * (c.projection * (uh - c.value));
+      if (nitsche_) force += c.projection * (law_.stress(deformation_gradient(c.shapes, q, u)) * c.points.normal[q]);
+      total += c.points.weight[q] * force;
+    }
+  return total;
+}
+
+}  // namespace kerf

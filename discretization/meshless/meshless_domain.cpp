@@ -1,0 +1,209 @@
+#include "discretization/meshless/meshless_domain.h"
+
+#include <algorithm>
+#include <map>
+#include <sstream>
+
+#include "core/check.h"
+#include "discretization/fem/simplex_quadrature.h"
+#include "discretization/meshless/mls_shape.h"
+#include "geometry/neighbor_search.h"
+#include "geometry/point_location.h"
+#include "problem/selection.h"
+
+namespace kerf {
+namespace {
+
+std::string support_remedy(double factor) {
+  std::ostringstream s;
+  s << "expected a larger 'discretization.meshless.support' (now " << factor
+    << " x spacing) or more nodes there";
+  return s.str();
+}
+
+}  // namespace
+
+MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<Box> box,
+                               std::optional<Mesh> background)
+    : nodes_(std::move(nodes)),
+      box_(std::move(box)),
+      background_(std::move(background)),
+      basis_(scene.discretization.meshless.basis),
+      support_factor_(scene.discretization.meshless.support) {
+  KERF_CHECK(box_ || background_, "a meshless domain needs a box or a background mesh");
+  if (box_) {
+    domain_size_ = (box_->max - box_->min).norm();
+  } else {
+    auto bb = bounding_box(*background_);
+    domain_size_ = (bb[1] - bb[0]).norm();
+  }
+  if (background_) {
+    facets_ = boundary_facets(*background_);
+    background_on_boundary_ = boundary_node_flags(*background_, facets_);
+  }
+  index_ = std::make_unique<PointIndex>(nodes_.positions);
+  at_nodes_ = shapes_at(nodes_.positions, "the node");
+}
+
+MeshlessDomain::~MeshlessDomain() = default;
+MeshlessDomain::MeshlessDomain(MeshlessDomain&&) noexcept = default;
+
+const Mesh& MeshlessDomain::background() const {
+  KERF_CHECK(background_, "this meshless domain has no background mesh");
+  return *background_;
+}
+
+ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
+  return shape_table(nodes_, *index_, basis_, points, what, support_remedy(support_factor_));
+}
+
+double MeshlessDomain::mean_neighbors() const {
+  const Index N = nodes_.size();
+  return N ? static_cast<double>(at_nodes_.neighbours.index.size() - N) / N : 0.0;
+}
+
+std::vector<Index> MeshlessDomain::select_nodes(const Selection& selection) const {
+  return select_points(selection, nodes_.positions, nodes_.on_boundary, domain_size_);
+}
+
+std::optional<PointInterpolation> MeshlessDomain::interpolation_at(const Vec3& x) const {
+  const double tolerance = 1e-6 * domain_size_;
+  bool inside = false;
+  if (box_) {
+    inside = true;
+    for (int a = 0; a < dimension(); ++a)
+      inside &= x[a] >= box_->min[a] - tolerance && x[a] <= box_->max[a] + tolerance;
+  } else {
+    inside = locate_point(*background_, x, tolerance).has_value();
+  }
+  if (!inside) return std::nullopt;
+  ShapeTable t = shapes_at(std::span<const Vec3>(&x, 1), "the point");
+  PointInterpolation p;
+  auto near = t.neighbours.of(0);
+  p.nodes.assign(near.begin(), near.end());
+  p.weights.assign(t.value.begin(), t.value.end());
+  return p;
+}
+
+std::vector<Index> MeshlessDomain::facets_in(const Selection& selection, bool required) const {
+  const Mesh& mesh = background();
+  std::vector<char> selected(mesh.nodes.size(), 0);
+  for (Index n : select_points(selection, mesh.nodes, background_on_boundary_, domain_size_)) selected[n] = 1;
+  const int corners = dimension();
+  std::vector<Index> out;
+  for (Index f = 0; f < facets_.count(); ++f) {
+    auto fn = facets_.facet(f);
+    if (std::all_of(fn.begin(), fn.begin() + corners, [&](Index n) { return selected[n]; })) out.push_back(f);
+  }
+  KERF_CHECK(!out.empty() || !required, selection.where.describe(),
+             ": the selection holds boundary points but no whole boundary face, so the condition has "
+             "nowhere to act; expected a plane or box covering at least one face");
+  return out;
+}
+
+BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, int points_per_direction) const {
+  const int dim = dimension(), fdim = dim - 1;
+  const Mesh& mesh = background();
+  QuadratureRule rule = collapsed_gauss(fdim, points_per_direction);
+  BoundaryPoints out;
+  for (Index f : facets) {
+    auto fn = facets_.facet(f);
+    const Vec3 a = mesh.nodes[fn[0]], b = mesh.nodes[fn[1]];
+    const Vec3 c = fdim == 2 ? mesh.nodes[fn[2]] : a;
+    // Outward area normal of the straight facet; |.| = d(area)/d(reference area).
+    Vec3 area_normal = fdim == 2 ? Vec3((b - a).cross(c - a)) : Vec3((b - a).y(), -(b - a).x(), 0.0);
+    const double jacobian = area_normal.norm();
+    for (std::size_t q = 0; q < rule.points.size(); ++q) {
+      const Vec3& r = rule.points[q];
+      out.position.push_back(Vec3(a + r.x() * (b - a) + (fdim == 2 ? r.y() : 0.0) * (c - a)));
+      out.normal.push_back(area_normal / jacobian);
+      out.weight.push_back(rule.weights[q] * jacobian);
+    }
+  }
+  return out;
+}
+
+std::vector<DirichletDof> MeshlessDomain::nodal_constraints(const Scene& scene,
+                                                            bool (*take)(const BoundaryCondition&)) const {
+  const int dim = dimension();
+  std::map<Index, std::pair<double, const BoundaryCondition*>> prescribed;
+  for (const BoundaryCondition& bc : scene.boundary) {
+    if (!bc.is_dirichlet() || !take(bc)) continue;
+    for (Index n : select_nodes(bc.select))
+      for (int i = 0; i < dim; ++i) {
+        if (!bc.fixed[i] && !bc.displacement[i]) continue;
+        double value = bc.fixed[i] ? 0.0 : *bc.displacement[i];
+        auto [it, inserted] = prescribed.try_emplace(dim * n + i, value, &bc);
+        KERF_CHECK(inserted || it->second.first == value, bc.where.describe(), ": component ", "xyz"[i],
+                   " of the node at [", nodes_.positions[n].transpose(), "] is prescribed ", value, " here and ",
+                   it->second.first, " by ", it->second.second->where.describe(), "; expected one value");
+      }
+  }
+  std::vector<DirichletDof> out;
+  for (const auto& [dof, entry] : prescribed) out.push_back({dof, entry.first});
+  return out;
+}
+
+void MeshlessDomain::add_boundary_loads(const Scene& scene, Vector& load) const {
+  const int dim = dimension();
+  for (const BoundaryCondition& bc : scene.boundary) {
+    if (bc.is_dirichlet()) continue;
+    BoundaryPoints points = boundary_points(facets_in(bc.select), 3);
+    ShapeTable t = shapes_at(points.position, "the boundary quadrature point");
+    for (Index q = 0; q < t.point_count(); ++q) {
+      Vec3 traction = Vec3::Zero();
+      if (bc.traction) traction += *bc.traction;
+      if (bc.pressure) traction -= *bc.pressure * points.normal[q];
+      auto near = t.neighbours.of(q);
+      const double* phi = t.values_of(q);
+      for (std::size_t k = 0; k < near.size(); ++k)
+        for (int i = 0; i < dim; ++i) load[dim * near[k] + i] += points.weight[q] * phi[k] * traction[i];
+    }
+  }
+}
+
+Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
+  const int dim = table.dimension;
+  auto near = table.neighbours.of(point);
+  const double* g = table.gradients_of(point);
+  Mat3 F = Mat3::Identity();
+  for (std::size_t k = 0; k < near.size(); ++k)
+    for (int i = 0; i < dim; ++i)
+      for (int l = 0; l < dim; ++l) F(i, l) += u[dim * near[k] + i] * g[dim * k + l];
+  return F;
+}
+
+Mat3 MeshlessDomain::deformation_gradient_at_node(Index node, const Vector& u) const {
+  return deformation_gradient(at_nodes_, node, u);
+}
+
+void MeshlessDomain::snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const {
+  const int dim = dimension();
+  const Index N = nodes_.size();
+  out = BodySnapshot{};
+  out.points = nodes_.positions;
+  for (Index n = 0; n < N; ++n) {
+    out.connectivity.push_back(n);
+    out.offsets.push_back(n + 1);
+    out.cell_types.push_back(1);  // VTK_VERTEX
+  }
+  OutputField displacement{"displacement", 3, std::vector<double>(3 * N, 0.0)};
+  OutputField stress{"stress", 9, std::vector<double>(9 * N, 0.0)};
+  OutputField mises{"von_mises", 1, std::vector<double>(N, 0.0)};
+  OutputField radius{"support_radius", 1, nodes_.support};
+  OutputField volume{"nodal_volume", 1, nodes_.volume};
+  OutputField condition{"mls_condition", 1, at_nodes_.condition};
+  for (Index n = 0; n < N; ++n) {
+    auto near = at_nodes_.neighbours.of(n);
+    const double* phi = at_nodes_.values_of(n);
+    for (std::size_t k = 0; k < near.size(); ++k)
+      for (int i = 0; i < dim; ++i) displacement.values[3 * n + i] += phi[k] * u[dim * near[k] + i];
+    Mat3 sigma = law.cauchy_stress(deformation_gradient_at_node(n, u));
+    for (int k = 0; k < 9; ++k) stress.values[9 * n + k] = sigma(k / 3, k % 3);
+    mises.values[n] = von_mises(sigma);
+  }
+  for (OutputField* f : {&displacement, &stress, &mises, &radius, &volume, &condition})
+    out.point_fields.push_back(std::move(*f));
+}
+
+}  // namespace kerf

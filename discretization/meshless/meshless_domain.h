@@ -1,0 +1,87 @@
+#pragma once
+// What the two meshless bodies (EFG and nodal integration) share: the nodes and
+// their k-d tree, the body's extent (a box, or a background mesh of tets or
+// triangles), selections, point interpolation through MLS, strong constraints
+// on nodal parameters, boundary loads integrated with MLS on the background
+// mesh's boundary facets, and the ParaView snapshot of the nodes.
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "discretization/discrete_body.h"
+#include "discretization/meshless/node_set.h"
+#include "discretization/meshless/shape_table.h"
+#include "geometry/boundary_facets.h"
+#include "geometry/mesh.h"
+#include "problem/material.h"
+
+namespace kerf {
+
+/// Quadrature points on boundary facets (m), with weights (m^2; 2D: m) and outward unit normals.
+struct BoundaryPoints {
+  std::vector<Vec3> position;
+  std::vector<Vec3> normal;
+  std::vector<double> weight;
+};
+
+class MeshlessDomain {
+ public:
+  /// `box`: the domain when it is a box; `background`: a simplex mesh covering
+  /// the domain (needed for EFG cells, boundary loads and non-box domains).
+  MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<Box> box, std::optional<Mesh> background);
+  ~MeshlessDomain();
+  MeshlessDomain(MeshlessDomain&&) noexcept;
+
+  const NodeSet& nodes() const { return nodes_; }
+  int dimension() const { return nodes_.dimension; }
+  double domain_size() const { return domain_size_; }
+  const Mesh& background() const;
+  const BoundaryFacets& facets() const { return facets_; }
+
+  /// MLS shape functions of the nodes at `points`; a point whose moment matrix
+  /// is singular is an error naming it (`what`) and the scene keys to change.
+  ShapeTable shapes_at(std::span<const Vec3> points, const std::string& what) const;
+  /// The shape table at the nodes themselves (nodal integration points, output).
+  const ShapeTable& at_nodes() const { return at_nodes_; }
+
+  /// Mean number of other nodes whose support covers a node.
+  double mean_neighbors() const;
+  std::vector<Index> select_nodes(const Selection& selection) const;
+  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const;
+  /// The background mesh's boundary facets whose corners all lie in the
+  /// selection; when `required`, throws (naming the scene line) if there are none.
+  std::vector<Index> facets_in(const Selection& selection, bool required = true) const;
+  /// Collapsed Gauss points (n per direction) on the straight facets.
+  BoundaryPoints boundary_points(std::span<const Index> facets, int points_per_direction) const;
+
+  /// Constraints on the nodal parameters of the selected nodes, for the
+  /// Dirichlet conditions `take` accepts; sorted by dof.
+  std::vector<DirichletDof> nodal_constraints(const Scene& scene, bool (*take)(const BoundaryCondition&)) const;
+  /// Adds the tractions and pressures of the scene (dead loads) into `load` (N).
+  void add_boundary_loads(const Scene& scene, Vector& load) const;
+
+  /// Nodes as VTK vertices with the MLS displacement u_h(x_I), Cauchy and von
+  /// Mises stress at the nodes, support radius, nodal volume, condition number.
+  void snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const;
+  /// F at node I from the MLS gradients at the node.
+  Mat3 deformation_gradient_at_node(Index node, const Vector& u) const;
+
+ private:
+  NodeSet nodes_;
+  std::optional<Box> box_;
+  std::optional<Mesh> background_;
+  BoundaryFacets facets_;
+  std::vector<char> background_on_boundary_;
+  std::unique_ptr<PointIndex> index_;
+  MlsBasis basis_;
+  double support_factor_;
+  double domain_size_;
+  ShapeTable at_nodes_;
+};
+
+/// Deformation gradient F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
+Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);
+
+}  // namespace kerf

@@ -1,0 +1,250 @@
+#include "discretization/meshless/nodal_body.h"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+#include "discretization/critical_step_bound.h"
+#include "discretization/meshless/mls_shape.h"
+
+namespace kerf {
+namespace {
+
+std::vector<double> pair_stiffnesses(const NodeSet& nodes, const ShapeTable& table, double c, double mu) {
+  std::vector<double> k(table.neighbours.index.size(), 0.0);
+  if (c == 0.0) return k;
+  for (Index I = 0; I < table.point_count(); ++I) {
+    auto near = table.neighbours.of(I);
+    const Index s0 = table.neighbours.start[I];
+    double normaliser = 0.0;
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
+      k[s0 + j] = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
+      normaliser += k[s0 + j] * X.squaredNorm();
+    }
+    for (std::size_t j = 0; j < near.size(); ++j)
+      k[s0 + j] = near[j] == I ? 0.0 : c * mu * nodes.volume[I] * k[s0 + j] / normaliser;
+  }
+  return k;
+}
+
+}  // namespace
+
+NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
+    : domain_(std::move(domain)),
+      law_(scene.material),
+      density_(scene.material.density),
+      points_(domain_.at_nodes(), domain_.nodes().volume, domain_.nodes().size()),
+      stabilized_(scene.discretization.meshless.stabilization) {
+  const NodeSet& nodes = domain_.nodes();
+  pair_stiffness_ = pair_stiffnesses(nodes, points_.shapes(), stabilized_ ? default_stabilization : 0.0,
+                                     law_.lame().mu);
+  const int dim = domain_.dimension();
+  load_ = Vector::Zero(dof_count());
+  for (Index I = 0; I < nodes.size(); ++I)
+    for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
+  domain_.add_boundary_loads(scene, load_);
+  dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
+  const ShapeTable& table = points_.shapes();
+  pair_lever_.assign(dim * table.neighbours.index.size(), 0.0);
+  for (Index I = 0; I < nodes.size(); ++I)
+    for (Index s = table.neighbours.start[I]; s < table.neighbours.start[I + 1]; ++s)
+      for (int i = 0; i < dim; ++i)
+        pair_lever_[dim * s + i] = pair_stiffness_[s] * (nodes.positions[table.neighbours.index[s]][i] - nodes.positions[I][i]);
+}
+
+template <int Dim, bool Stabilized>
+void NodalBody::force_kernel(const Vector& u, Vector& f) const {
+  const NodeSet& nodes = domain_.nodes();
+  const ShapeTable& table = points_.shapes();
+  const Index N = nodes.size(), dofs = Dim * N;
+  const Index* start = table.neighbours.start.data();
+  const Index* index = table.neighbours.index.data();
+  const double* g = table.gradient.data();
+  const double* c = pair_lever_.data();
+  const double* k = pair_stiffness_.data();
+  f.resize(dofs);
+#pragma omp parallel
+  {
+    const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
+#pragma omp single
+    thread_forces_.resize(static_cast<std::size_t>(threads) * dofs);
+    double* mine = thread_forces_.data() + static_cast<std::size_t>(thread) * dofs;
+    std::fill(mine, mine + dofs, 0.0);
+    // One pass over the nodes: F_I from the neighbours, then each neighbour's
+    // share of V_I P(F_I) grad phi_K(x_I) and of the pair terms, scattered into
+    // this thread's own force vector.
+#pragma omp for schedule(static)
+    for (Index I = 0; I < N; ++I) {
+      const Index s0 = start[I], s1 = start[I + 1];
+      // Plain scalar accumulators: Eigen's fixed matrices here end up on the
+      // stack, and the loop then waits on store-to-load forwarding.
+      double h[Dim][Dim] = {};
+      for (Index s = s0; s < s1; ++s) {
+        const double* uK = &u[Dim * index[s]];
+        const double* gs = g + Dim * s;
+        for (int i = 0; i < Dim; ++i)
+          for (int l = 0; l < Dim; ++l) h[i][l] += uK[i] * gs[l];
+      }
+      Mat3 F = Mat3::Identity();
+      for (int i = 0; i < Dim; ++i)
+        for (int l = 0; l < Dim; ++l) F(i, l) += h[i][l];
+      const Mat3 P = law_.stress(F);
+      double q[Dim][Dim];
+      for (int i = 0; i < Dim; ++i)
+        for (int l = 0; l < Dim; ++l) q[i][l] = nodes.volume[I] * P(i, l);
+      const double* uI = &u[Dim * I];
+      double pushI[Dim] = {};
+      for (Index s = s0; s < s1; ++s) {
+        double* fK = mine + Dim * index[s];
+        const double* gs = g + Dim * s;
+        double t[Dim];
+        for (int i = 0; i < Dim; ++i) {
+          double qg = 0.0;
+          for (int l = 0; l < Dim; ++l) qg += q[i][l] * gs[l];
+          t[i] = qg;
+        }
+        if constexpr (Stabilized) {
+          // k_IK e_IK = k_IK (u_K - u_I) - H_I (k_IK X_IK): pulls K, pushes I.
+          const double* uK = &u[Dim * index[s]];
+          const double* cs = c + Dim * s;
+          for (int i = 0; i < Dim; ++i) {
+            double e = k[s] * (uK[i] - uI[i]);
+            for (int l = 0; l < Dim; ++l) e -= h[i][l] * cs[l];
+            t[i] += e;
+            pushI[i] += e;
+          }
+        }
+        for (int i = 0; i < Dim; ++i) fK[i] += t[i];
+      }
+      for (int i = 0; i < Dim; ++i) mine[Dim * I + i] -= pushI[i];
+    }
+#pragma omp for schedule(static)
+    for (Index d = 0; d < dofs; ++d) {
+      double sum = 0.0;
+      for (int t = 0; t < threads; ++t) sum += thread_forces_[static_cast<std::size_t>(t) * dofs + d];
+      f[d] = sum;
+    }
+  }
+}
+
+void NodalBody::internal_force(const Vector& u, Vector& f) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  const bool two = domain_.dimension() == 2;
+  if (stabilized_)
+    two ? force_kernel<2, true>(u, f) : force_kernel<3, true>(u, f);
+  else
+    two ? force_kernel<2, false>(u, f) : force_kernel<3, false>(u, f);
+}
+
+double NodalBody::energies(const Vector& u, double* stabilization) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  const int dim = domain_.dimension();
+  const NodeSet& nodes = domain_.nodes();
+  const ShapeTable& table = points_.shapes();
+  double material = 0.0, stab = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : material, stab)
+  for (Index I = 0; I < nodes.size(); ++I) {
+    const Mat3 F = deformation_gradient(table, I, u);
+    material += nodes.volume[I] * law_.energy(F);
+    auto near = table.neighbours.of(I);
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      const Index s = table.neighbours.start[I] + static_cast<Index>(j);
+      if (pair_stiffness_[s] == 0.0) continue;
+      Vec3 e = Vec3::Zero(), X = nodes.positions[near[j]] - nodes.positions[I];
+      for (int i = 0; i < dim; ++i) e[i] = u[dim * near[j] + i] - u[dim * I + i];
+      e -= (F - Mat3::Identity()) * X;
+      stab += 0.5 * pair_stiffness_[s] * e.squaredNorm();
+    }
+  }
+  if (stabilization) *stabilization = stab;
+  return material + stab;
+}
+
+double NodalBody::strain_energy(const Vector& u) const { return energies(u, nullptr); }
+
+double NodalBody::stabilization_energy(const Vector& u) const {
+  double stab = 0.0;
+  energies(u, &stab);
+  return stab;
+}
+
+void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) const {
+  const int dim = domain_.dimension();
+  const NodeSet& nodes = domain_.nodes();
+  const ShapeTable& table = points_.shapes();
+  auto near = table.neighbours.of(I);
+  const Index n = static_cast<Index>(near.size()), s0 = table.neighbours.start[I], size = n * dim;
+  const double* g = table.gradients_of(I);
+  // e_IJ = sum_a b_J[a] u_a with b_J[a] = [a = J] - [a = I] - grad phi_a(x_I) . X_IJ.
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd b(n);
+  for (Index j = 0; j < n; ++j) {
+    const double k = pair_stiffness_[s0 + j];
+    if (k == 0.0) continue;
+    const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
+    for (Index a = 0; a < n; ++a) {
+      double gX = 0.0;
+      for (int l = 0; l < dim; ++l) gX += g[dim * a + l] * X[l];
+      b[a] = (a == j ? 1.0 : 0.0) - (near[a] == I ? 1.0 : 0.0) - gX;
+    }
+    S.noalias() += k * b * b.transpose();
+  }
+  for (Index a = 0; a < n; ++a)
+    for (Index c = 0; c < n; ++c)
+      for (int i = 0; i < dim; ++i) block[(dim * a + i) * size + dim * c + i] += S(a, c);
+}
+
+void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  const NodeSet& nodes = domain_.nodes();
+  // Blocks are computed in parallel and handed to the sink one at a time: the
+  // blocks of neighbouring nodes overlap almost entirely, so there is no
+  // conflict-free order worth having.
+#pragma omp parallel
+  {
+    std::vector<double> block;
+    std::vector<Index> dofs;
+    Mat3 P;
+    Mat9 dPdF;
+#pragma omp for schedule(dynamic, 16)
+    for (Index I = 0; I < nodes.size(); ++I) {
+      points_.neighbour_dofs(I, dofs);
+      block.assign(dofs.size() * dofs.size(), 0.0);
+      law_.stress_and_tangent(deformation_gradient(points_.shapes(), I, u), P, dPdF);
+      points_.add_material_block(I, dPdF, nodes.volume[I], block);
+      if (stabilized_) add_stabilization_block(I, block);
+#pragma omp critical(kerf_nodal_sink)
+      sink(dofs, block);
+    }
+  }
+  if (f) internal_force(u, *f);
+}
+
+void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
+  std::vector<Index> dofs;
+  for (Index I = 0; I < node_count(); ++I) {
+    points_.neighbour_dofs(I, dofs);
+    visit(dofs);
+  }
+}
+
+Vector NodalBody::lumped_mass() const {
+  const int dim = domain_.dimension();
+  Vector m(dof_count());
+  for (Index I = 0; I < node_count(); ++I)
+    for (int i = 0; i < dim; ++i) m[dim * I + i] = density_ * domain_.nodes().volume[I];
+  return m;
+}
+
+void NodalBody::consistent_mass(const BlockSink& sink) const {
+  // Nodal integration has no consistent mass: the lumped one is the method's mass.
+  Vector m = lumped_mass();
+  for (Index d = 0; d < dof_count(); ++d) sink(std::span<const Index>(&d, 1), std::span<const double>(&m[d], 1));
+}
+
+double NodalBody::critical_time_step() const { return gershgorin_critical_step(*this); }
+
+}  // namespace kerf

@@ -1,0 +1,79 @@
+#pragma once
+// Meshless nodal integration, the paper's method (after Muller et al. 2004):
+// F at each node from the MLS gradients there, internal forces from the
+// nodally integrated strain energy sum_I V_I psi(F_I), lumped mass rho V_I,
+// constraints on the nodal parameters. Its zero-energy modes are held by a
+// hourglass-type term on every node pair (I, J in the support of I):
+//   e_IJ = u_J - u_I - (F_I - 1)(x_J - x_I),
+//   E_stab = 1/2 sum_I sum_J k_IJ |e_IJ|^2,  k_IJ = c mu V_I w_IJ / (sum_J w_IJ |x_J - x_I|^2),
+// which vanishes for every affine motion (so patch tests and rigid rotations of
+// any size are untouched) and is quadratic in u.
+#include <vector>
+
+#include "discretization/discrete_body.h"
+#include "discretization/meshless/meshless_domain.h"
+#include "discretization/meshless/point_integration.h"
+#include "problem/material.h"
+
+namespace kerf {
+
+class NodalBody final : public DiscreteBody {
+ public:
+  /// The default c of the stabilisation (meshless.stabilization: true).
+  static constexpr double default_stabilization = 0.1;
+
+  NodalBody(const Scene& scene, MeshlessDomain domain);
+
+  int dofs_per_node() const override { return domain_.dimension(); }
+  Index node_count() const override { return domain_.nodes().size(); }
+  Vec3 node_position(Index node) const override { return domain_.nodes().positions[node]; }
+  Index element_count() const override { return node_count(); }
+  double mean_neighbors() const override { return domain_.mean_neighbors(); }
+
+  void visit_couplings(const CouplingVisitor& visit) const override;
+  /// Not reentrant: two calls on one body must not run at the same time (per-thread scratch).
+  void internal_force(const Vector& u, Vector& f) const override;
+  void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
+  double strain_energy(const Vector& u) const override;
+  bool is_linear() const override { return law_.is_linear(); }
+
+  Vector lumped_mass() const override;
+  void consistent_mass(const BlockSink& sink) const override;
+  void external_force(double t, Vector& f) const override { f = load_; }
+  std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
+  double critical_time_step() const override;
+
+  std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
+  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
+    return domain_.interpolation_at(x);
+  }
+  void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
+
+  const MeshlessDomain& domain() const { return domain_; }
+  /// Stabilisation energy alone (J): zero for affine displacement fields.
+  double stabilization_energy(const Vector& u) const;
+
+ private:
+  /// f_int in one pass over the nodes, each thread scattering into its own
+  /// force vector (summed at the end: no atomics; the sum's order depends on
+  /// the thread count only).
+  template <int Dim, bool Stabilized>
+  void force_kernel(const Vector& u, Vector& f) const;
+  /// Strain energy with stabilisation; the stabilisation's part into *stabilization.
+  double energies(const Vector& u, double* stabilization) const;
+  /// The stabilisation's stiffness on point I's neighbours (scalar per node pair) into `block`.
+  void add_stabilization_block(Index I, std::vector<double>& block) const;
+
+  MeshlessDomain domain_;
+  MaterialLaw law_;
+  double density_;
+  PointIntegration points_;
+  std::vector<double> pair_stiffness_;  // per slot: k_IJ (N/m); 0 for J = I or without stabilisation
+  bool stabilized_;
+  Vector load_;
+  std::vector<DirichletDof> dirichlet_;
+  std::vector<double> pair_lever_;      // per slot: k_IJ (x_J - x_I), dim entries (N)
+  mutable std::vector<double> thread_forces_;
+};
+
+}  // namespace kerf

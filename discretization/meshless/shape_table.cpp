@@ -1,0 +1,57 @@
+#include "discretization/meshless/shape_table.h"
+
+#include <sstream>
+
+#include "core/check.h"
+#include "discretization/meshless/mls_shape.h"
+
+namespace kerf {
+
+ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
+                       const std::string& what, const std::string& remedy) {
+  const int dim = nodes.dimension;
+  ShapeTable t;
+  t.dimension = dim;
+  t.neighbours = covering_supports(index, nodes.support, points);
+  const Index P = t.point_count();
+  t.value.assign(t.neighbours.index.size(), 0.0);
+  t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
+  t.condition.assign(P, 0.0);
+  Index failed = -1;
+#pragma omp parallel
+  {
+    MlsShape shape;
+    std::vector<Vec3> x;
+    std::vector<double> r;
+#pragma omp for schedule(dynamic, 64)
+    for (Index p = 0; p < P; ++p) {
+      auto near = t.neighbours.of(p);
+      x.clear();
+      r.clear();
+      for (Index I : near) x.push_back(nodes.positions[I]), r.push_back(nodes.support[I]);
+      const bool ok = mls_shape_functions(dim, basis, points[p], x, r, false, shape);
+      t.condition[p] = shape.condition;
+      if (!ok) {
+#pragma omp critical
+        if (failed < 0 || p < failed) failed = p;
+        continue;
+      }
+      const std::size_t s = t.neighbours.start[p];
+      for (std::size_t k = 0; k < near.size(); ++k) {
+        t.value[s + k] = shape.value[k];
+        for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = shape.gradient[k][i];
+      }
+    }
+  }
+  if (failed >= 0) {
+    std::ostringstream why;
+    why << "the MLS moment matrix at " << what << " [" << points[failed].transpose() << "] cannot be inverted ("
+        << t.neighbours.of(failed).size() << " node supports cover it, condition number " << t.condition[failed]
+        << "; the " << mls_basis_size(dim, basis) << "-term basis needs at least that many nodes not on one "
+        << (dim == 3 ? "plane" : "line") << "); " << remedy;
+    throw Error(why.str());
+  }
+  return t;
+}
+
+}  // namespace kerf

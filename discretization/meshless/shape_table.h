@@ -1,0 +1,32 @@
+#pragma once
+// MLS shape functions of a node set evaluated once at a batch of points (the
+// nodes themselves for nodal integration, Gauss points for EFG), stored flat:
+// point p's neighbours are neighbours.of(p), their values start at
+// neighbours.start[p] and their gradients at dim * neighbours.start[p].
+#include <span>
+#include <string>
+#include <vector>
+
+#include "discretization/meshless/node_set.h"
+#include "geometry/neighbor_search.h"
+
+namespace kerf {
+
+struct ShapeTable {
+  int dimension = 3;
+  NeighborLists neighbours;       // per point: the nodes whose support covers it
+  std::vector<double> value;      // per (point, neighbour)
+  std::vector<double> gradient;   // per (point, neighbour), dimension entries (1/m)
+  std::vector<double> condition;  // per point: condition number of the scaled moment matrix
+  Index point_count() const { return neighbours.size(); }
+  const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
+  const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }
+};
+
+/// Shape functions at `points`. Throws when the moment matrix at a point cannot
+/// be inverted, naming the point ("`what` [x y z]"), how many nodes cover it,
+/// and `remedy` (what the user should change).
+ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
+                       const std::string& what, const std::string& remedy);
+
+}  // namespace kerf
