@@ -14,10 +14,10 @@
 namespace kerf {
 namespace {
 
-std::string support_remedy(double factor) {
+std::string support_context(const Scene& scene) {
   std::ostringstream s;
-  s << "expected a larger 'discretization.meshless.support' (now " << factor
-    << " x spacing) or more nodes there";
+  s << scene.file << ": key 'discretization.meshless.support': value " << scene.discretization.meshless.support
+    << " (x spacing, " << to_string(scene.discretization.meshless.basis) << " basis): ";
   return s.str();
 }
 
@@ -29,7 +29,7 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
       box_(std::move(box)),
       background_(std::move(background)),
       basis_(scene.discretization.meshless.basis),
-      support_factor_(scene.discretization.meshless.support) {
+      error_context_(support_context(scene)) {
   KERF_CHECK(box_ || background_, "a meshless domain needs a box or a background mesh");
   if (box_) {
     domain_size_ = (box_->max - box_->min).norm();
@@ -54,7 +54,8 @@ const Mesh& MeshlessDomain::background() const {
 }
 
 ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
-  return shape_table(nodes_, *index_, basis_, points, what, support_remedy(support_factor_));
+  return shape_table(nodes_, *index_, basis_, points, what, error_context_,
+                     "expected a larger support, a linear basis, or more nodes there");
 }
 
 double MeshlessDomain::mean_neighbors() const {

@@ -76,7 +76,7 @@ class MeshlessDomain {
   std::vector<char> background_on_boundary_;
   std::unique_ptr<PointIndex> index_;
   MlsBasis basis_;
-  double support_factor_;
+  std::string error_context_;  // names the scene file and key in MLS errors
   double domain_size_;
   ShapeTable at_nodes_;
 };

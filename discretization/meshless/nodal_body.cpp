@@ -49,10 +49,17 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
   dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
   const ShapeTable& table = points_.shapes();
   pair_lever_.assign(dim * table.neighbours.index.size(), 0.0);
+  lever_sum_.assign(3 * nodes.size(), 0.0);
+  lever_moment_.assign(9 * nodes.size(), 0.0);
   for (Index I = 0; I < nodes.size(); ++I)
-    for (Index s = table.neighbours.start[I]; s < table.neighbours.start[I + 1]; ++s)
-      for (int i = 0; i < dim; ++i)
-        pair_lever_[dim * s + i] = pair_stiffness_[s] * (nodes.positions[table.neighbours.index[s]][i] - nodes.positions[I][i]);
+    for (Index s = table.neighbours.start[I]; s < table.neighbours.start[I + 1]; ++s) {
+      const Vec3 X = nodes.positions[table.neighbours.index[s]] - nodes.positions[I];
+      for (int i = 0; i < dim; ++i) {
+        pair_lever_[dim * s + i] = pair_stiffness_[s] * X[i];
+        lever_sum_[3 * I + i] += pair_stiffness_[s] * X[i];
+        for (int l = 0; l < dim; ++l) lever_moment_[9 * I + 3 * i + l] += pair_stiffness_[s] * X[i] * X[l];
+      }
+    }
 }
 
 template <int Dim, bool Stabilized>
@@ -81,21 +88,36 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
       const Index s0 = start[I], s1 = start[I + 1];
       // Plain scalar accumulators: Eigen's fixed matrices here end up on the
       // stack, and the loop then waits on store-to-load forwarding.
-      double h[Dim][Dim] = {};
+      // h = grad u at x_I; d = sum_K u_K (k_IK X_IK)^T for the stabilisation.
+      double h[Dim][Dim] = {}, d[Dim][Dim] = {};
       for (Index s = s0; s < s1; ++s) {
         const double* uK = &u[Dim * index[s]];
         const double* gs = g + Dim * s;
         for (int i = 0; i < Dim; ++i)
           for (int l = 0; l < Dim; ++l) h[i][l] += uK[i] * gs[l];
+        if constexpr (Stabilized) {
+          const double* cs = c + Dim * s;
+          for (int i = 0; i < Dim; ++i)
+            for (int l = 0; l < Dim; ++l) d[i][l] += uK[i] * cs[l];
+        }
       }
       Mat3 F = Mat3::Identity();
       for (int i = 0; i < Dim; ++i)
         for (int l = 0; l < Dim; ++l) F(i, l) += h[i][l];
       const Mat3 P = law_.stress(F);
+      const double* uI = &u[Dim * I];
+      // q = V_I P - sum_J k_IJ e_IJ X_IJ^T, the second part through F_I's
+      // dependence on the neighbours: sum_J k e X^T = d - u_I s_I^T - h M_I.
       double q[Dim][Dim];
       for (int i = 0; i < Dim; ++i)
-        for (int l = 0; l < Dim; ++l) q[i][l] = nodes.volume[I] * P(i, l);
-      const double* uI = &u[Dim * I];
+        for (int l = 0; l < Dim; ++l) {
+          q[i][l] = nodes.volume[I] * P(i, l);
+          if constexpr (Stabilized) {
+            double hM = 0.0;
+            for (int m = 0; m < Dim; ++m) hM += h[i][m] * lever_moment_[9 * I + 3 * m + l];
+            q[i][l] -= d[i][l] - uI[i] * lever_sum_[3 * I + l] - hM;
+          }
+        }
       double pushI[Dim] = {};
       for (Index s = s0; s < s1; ++s) {
         double* fK = mine + Dim * index[s];

@@ -72,7 +72,9 @@ class NodalBody final : public DiscreteBody {
   bool stabilized_;
   Vector load_;
   std::vector<DirichletDof> dirichlet_;
-  std::vector<double> pair_lever_;      // per slot: k_IJ (x_J - x_I), dim entries (N)
+  std::vector<double> pair_lever_;      // per slot: k_IJ X_IJ, X_IJ = x_J - x_I, dim entries (N)
+  std::vector<double> lever_sum_;       // per node: sum_J k_IJ X_IJ, 3 entries (N)
+  std::vector<double> lever_moment_;    // per node: sum_J k_IJ X_IJ X_IJ^T, 3 x 3 row-major (N m)
   mutable std::vector<double> thread_forces_;
 };
 

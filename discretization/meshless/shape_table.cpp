@@ -8,7 +8,7 @@
 namespace kerf {
 
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
-                       const std::string& what, const std::string& remedy) {
+                       const std::string& what, const std::string& context, const std::string& remedy) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
@@ -45,7 +45,7 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
   }
   if (failed >= 0) {
     std::ostringstream why;
-    why << "the MLS moment matrix at " << what << " [" << points[failed].transpose() << "] cannot be inverted ("
+    why << context << "the MLS moment matrix at " << what << " [" << points[failed].transpose() << "] cannot be inverted ("
         << t.neighbours.of(failed).size() << " node supports cover it, condition number " << t.condition[failed]
         << "; the " << mls_basis_size(dim, basis) << "-term basis needs at least that many nodes not on one "
         << (dim == 3 ? "plane" : "line") << "); " << remedy;

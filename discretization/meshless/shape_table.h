@@ -24,9 +24,9 @@ struct ShapeTable {
 };
 
 /// Shape functions at `points`. Throws when the moment matrix at a point cannot
-/// be inverted, naming the point ("`what` [x y z]"), how many nodes cover it,
-/// and `remedy` (what the user should change).
+/// be inverted: `context` (where the setting comes from), then the point
+/// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
-                       const std::string& what, const std::string& remedy);
+                       const std::string& what, const std::string& context, const std::string& remedy);
 
 }  // namespace kerf

@@ -1,0 +1,169 @@
+// The meshless bodies (nodal integration and EFG) on small lattices: tangents
+// and forces against finite differences for every material, the stabilisation
+// blind to affine motions, objectivity, masses and loads adding up.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+
+#include "core/check.h"
+#include "discretization/body_factory.h"
+#include "discretization/meshless/efg_body.h"
+#include "discretization/meshless/nodal_body.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+const MaterialModel all_models[] = {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk,
+                                    MaterialModel::neohookean};
+
+/// A 3 x 2 x 2 cm block (or 3 x 2 cm plate) at 5 mm spacing, clamped at x = 0,
+/// pulled at x = 0.03, under gravity.
+std::unique_ptr<DiscreteBody> small_body(const std::string& method, int dim, MaterialModel model,
+                                         std::vector<std::string> overrides = {}) {
+  std::string yaml = dim == 3 ? "domain: {box: {min: [0,0,0], max: [0.03,0.02,0.02]}}\n"
+                                "body_force: {gravity: [0, 0, -9.81]}\n"
+                                "boundary:\n"
+                                "  - {select: {plane: {axis: x, at: 0.0}}, fix: [x, y, z]}\n"
+                                "  - {select: {plane: {axis: x, at: 0.03}}, traction: [100, 50, 0]}\n"
+                              : "dimension: 2\ndomain: {box: {min: [0,0], max: [0.03,0.02]}}\n"
+                                "body_force: {gravity: [0, -9.81]}\n"
+                                "boundary:\n"
+                                "  - {select: {plane: {axis: x, at: 0.0}}, fix: [x, y]}\n"
+                                "  - {select: {plane: {axis: x, at: 0.03}}, traction: [100, 50]}\n";
+  yaml += "material: {young: 1.0e4, poisson: 0.3}\n"
+          "discretization: {method: " + method + ", meshless: {spacing: 0.005}}\n"
+          "solve: {analysis: static}\n";
+  overrides.push_back(std::string("material.model=") + to_string(model));
+  Scene scene = testing::scene_from_text(yaml, overrides);
+  RunReport report;
+  return make_body(scene, report);
+}
+
+/// A smooth field with strains up to about 0.2 plus noise.
+Vector smooth_field(const DiscreteBody& body) {
+  std::srand(5);
+  const int dim = body.dofs_per_node();
+  Vector u = 1e-5 * Vector::Random(body.dof_count());
+  for (Index n = 0; n < body.node_count(); ++n) {
+    const Vec3 x = 50.0 * body.node_position(n);
+    Vec3 s(0.004 * std::sin(x.x() + 2 * x.y()), 0.004 * std::cos(3 * x.z() + x.x()), 0.004 * std::sin(x.y() * x.z()));
+    for (int i = 0; i < dim; ++i) u[dim * n + i] += s[i];
+  }
+  return u;
+}
+
+void expect_consistent_derivatives(const DiscreteBody& body, const std::string& what, bool check_tangent) {
+  const Vector u = smooth_field(body);
+  std::srand(7);
+  const Vector du = Vector::Random(body.dof_count());
+  const double h = 1e-7;
+  Vector fp, fm, f;
+  body.internal_force(u + h * du, fp);
+  body.internal_force(u - h * du, fm);
+  body.internal_force(u, f);
+  // The force is the gradient of the energy.
+  const double power = (body.strain_energy(u + h * du) - body.strain_energy(u - h * du)) / (2 * h);
+  EXPECT_NEAR(f.dot(du), power, 1e-6 * std::abs(power)) << what;
+  if (!check_tangent) return;
+  SparseMatrix K = testing::assemble_stiffness(body, u);
+  const Vector numeric = (fp - fm) / (2 * h), analytic = K * du;
+  EXPECT_LT((analytic - numeric).norm(), 1e-6 * analytic.norm()) << what;
+  // The tangent is symmetric.
+  SparseMatrix KT = K.transpose();
+  EXPECT_LT((K - KT).norm(), 1e-10 * K.norm()) << what;
+}
+
+TEST(NodalBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
+  for (int dim : {2, 3})
+    for (MaterialModel model : all_models)
+      for (const char* stab : {"true", "false"})
+        expect_consistent_derivatives(*small_body("nodal", dim, model, {std::string("discretization.meshless.stabilization=") + stab}),
+                                      std::string("nodal ") + to_string(model) + " dim " + std::to_string(dim) + " stab " + stab,
+                                      true);
+}
+
+TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
+  for (int dim : {2, 3})
+    for (MaterialModel model : all_models) {
+      const std::string what = std::string("efg ") + to_string(model) + " dim " + std::to_string(dim);
+      expect_consistent_derivatives(*small_body("efg", dim, model, {"discretization.meshless.essential=penalty"}),
+                                    what + " penalty", true);
+      // Nitsche's tangent is exact for linear materials; for the others it drops
+      // a term proportional to the constraint violation, so only the energy is checked.
+      expect_consistent_derivatives(*small_body("efg", dim, model), what + " nitsche",
+                                    model == MaterialModel::linear);
+    }
+}
+
+TEST(NodalBody, StabilizationIgnoresAffineMotionsOfAnySize) {
+  auto body = small_body("nodal", 3, MaterialModel::corotational);
+  const auto& nodal = dynamic_cast<const NodalBody&>(*body);
+  const Mat3 R = Eigen::AngleAxisd(1.1, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  const Mat3 A = R * (Mat3() << 1.2, 0.1, 0.0, 0.0, 0.9, 0.2, 0.1, 0.0, 1.1).finished() - Mat3::Identity();
+  Vector affine(body->dof_count()), rotation(body->dof_count());
+  for (Index n = 0; n < body->node_count(); ++n) {
+    const Vec3 x = body->node_position(n);
+    affine.segment<3>(3 * n) = A * x + Vec3(0.01, -0.02, 0.03);
+    rotation.segment<3>(3 * n) = (R - Mat3::Identity()) * x;
+  }
+  const double scale = nodal.strain_energy(affine);
+  EXPECT_LT(nodal.stabilization_energy(affine), 1e-12 * scale);
+  EXPECT_GT(nodal.stabilization_energy(smooth_field(*body)), 0.0);
+  // A rigid rotation of 63 degrees stresses nothing (corotational material).
+  Vector f;
+  nodal.internal_force(rotation, f);
+  Vector f_stretch;
+  nodal.internal_force(affine, f_stretch);
+  EXPECT_LT(f.norm(), 1e-10 * f_stretch.norm());
+}
+
+TEST(MeshlessBodies, MassesAndLoadsAddUpToTheirTotals) {
+  for (const char* method : {"nodal", "efg"})
+    for (int dim : {2, 3}) {
+      auto body = small_body(method, dim, MaterialModel::linear);
+      const double volume = dim == 3 ? 0.03 * 0.02 * 0.02 : 0.03 * 0.02, area = dim == 3 ? 0.02 * 0.02 : 0.02;
+      const Vector m = body->lumped_mass();
+      EXPECT_NEAR(m.sum() / dim, 1000.0 * volume, 1e-10 * volume) << method << dim;
+      Vector load;
+      body->external_force(0.0, load);
+      Vec3 total = Vec3::Zero();
+      for (Index n = 0; n < body->node_count(); ++n)
+        for (int i = 0; i < dim; ++i) total[i] += load[dim * n + i];
+      // Gravity (rho g V) plus the traction on the x = 0.03 face (t A).
+      const Vec3 expected = dim == 3 ? Vec3(100 * area, 50 * area, -9.81 * 1000 * volume)
+                                     : Vec3(100 * area, 50 * area - 9.81 * 1000 * volume, 0);
+      EXPECT_LT((total - expected).norm(), 1e-10 * expected.norm()) << method << dim;
+    }
+}
+
+TEST(MeshlessBodies, InterpolationReproducesLinearFieldsAndRefusesOutsidePoints) {
+  auto body = small_body("nodal", 3, MaterialModel::linear);
+  Vector u(body->dof_count());
+  const Mat3 A = (Mat3() << 1, 2, 3, 4, 5, 6, 7, 8, 10).finished();
+  for (Index n = 0; n < body->node_count(); ++n) u.segment<3>(3 * n) = A * body->node_position(n);
+  const Vec3 x(0.0123, 0.0071, 0.0189);
+  auto p = body->interpolation_at(x);
+  ASSERT_TRUE(p.has_value());
+  Vec3 value = Vec3::Zero();
+  for (std::size_t k = 0; k < p->nodes.size(); ++k) value += p->weights[k] * u.segment<3>(3 * p->nodes[k]);
+  EXPECT_LT((value - A * x).norm(), 1e-12 * (A * x).norm());
+  EXPECT_FALSE(body->interpolation_at(Vec3(0.05, 0.01, 0.01)).has_value());
+}
+
+TEST(MeshlessBodies, ASupportTooSmallIsReportedByPosition) {
+  try {
+    // Seven nodes (a node and its six lattice neighbours) for a ten-term quadratic basis.
+    small_body("nodal", 3, MaterialModel::linear,
+               {"discretization.meshless.support=1.2", "discretization.meshless.basis=quadratic"});
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("cannot be inverted"), std::string::npos) << message;
+    EXPECT_NE(message.find("the node ["), std::string::npos) << message;
+    EXPECT_NE(message.find("discretization.meshless.support"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
+}  // namespace kerf
