@@ -31,22 +31,6 @@ int fem_order(const Scene& scene) {
   return e == ElementType::tet10 || e == ElementType::tri6 ? 2 : 1;
 }
 
-/// Straight-sided linear cells: the corners of each cell (mid-edge nodes dropped and renumbered).
-Mesh linear_cells(const Mesh& mesh) {
-  if (mesh.order == 1) return mesh;
-  Mesh out;
-  out.dimension = mesh.dimension;
-  const int corners = mesh.dimension + 1;
-  std::vector<Index> index(mesh.nodes.size(), -1);
-  for (Index c = 0; c < mesh.cell_count(); ++c)
-    for (int a = 0; a < corners; ++a) {
-      Index n = mesh.cell(c)[a];
-      if (index[n] < 0) index[n] = static_cast<Index>(out.nodes.size()), out.nodes.push_back(mesh.nodes[n]);
-      out.cells.push_back(index[n]);
-    }
-  return out;
-}
-
 std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& report) {
   const MeshlessOptions& options = scene.discretization.meshless;
   const bool on_mesh_nodes = options.nodes == NodePlacement::mesh || !scene.box;
@@ -60,7 +44,7 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
   else if (scene.discretization.method == Method::efg || boundary_loads)
     background = make_mesh(scene, 1, options.spacing);
   if (background) {
-    background = linear_cells(*background);
+    background = corner_mesh(*background);
     order_for_locality(*background);
     report.add_stage("mesh");
   }

@@ -79,9 +79,11 @@ class DiscreteBody {
   /// The constrained dofs and their prescribed values at time t, sorted by dof.
   virtual std::vector<DirichletDof> dirichlet(double t) const = 0;
 
-  /// Largest stable central-difference step with the lumped mass (s), from
-  /// element (or node) frequency bounds at the undeformed state.
-  virtual double critical_time_step() const = 0;
+  /// A cheap safe central-difference step with the lumped mass (s), from
+  /// element frequency bounds at the undeformed state; nullopt when the method
+  /// has no bound cheaper than the assembled stiffness (meshless: every bound
+  /// needs all the point blocks), and the stepper's Lanczos bound is used alone.
+  virtual std::optional<double> critical_time_step() const = 0;
 
   /// The nodes a selection takes; throws (naming the scene line) when it takes none.
   virtual std::vector<Index> select_nodes(const Selection& selection) const = 0;

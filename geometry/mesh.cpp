@@ -48,6 +48,20 @@ Index orient_cells(Mesh& mesh) {
   return flipped;
 }
 
+Mesh corner_mesh(const Mesh& mesh) {
+  const int corners = mesh.dimension + 1;
+  std::vector<Index> index(mesh.nodes.size(), -1);
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    for (int a = 0; a < corners; ++a) index[mesh.cell(c)[a]] = 0;
+  Mesh out;
+  out.dimension = mesh.dimension;
+  for (std::size_t n = 0; n < mesh.nodes.size(); ++n)
+    if (index[n] == 0) index[n] = static_cast<Index>(out.nodes.size()), out.nodes.push_back(mesh.nodes[n]);
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    for (int a = 0; a < corners; ++a) out.cells.push_back(index[mesh.cell(c)[a]]);
+  return out;
+}
+
 std::array<Vec3, 2> bounding_box(const Mesh& mesh) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<double>::infinity()), hi = -lo;
   for (const Vec3& p : mesh.nodes) {

@@ -37,6 +37,10 @@ Index orient_cells(Mesh& mesh);
 /// Volume (3D) or area (2D) of the straight-sided cell c.
 double cell_measure(const Mesh& mesh, Index c);
 
+/// The straight-sided linear mesh on the corners of each cell: mid-edge nodes
+/// and nodes of no cell dropped, the others kept in their original order.
+Mesh corner_mesh(const Mesh& mesh);
+
 /// Smallest axis-aligned box holding every node.
 std::array<Vec3, 2> bounding_box(const Mesh& mesh);
 

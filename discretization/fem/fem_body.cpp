@@ -323,7 +323,7 @@ void FemBody::build_constraints(const Scene& scene) {
   for (const auto& [dof, entry] : prescribed) dirichlet_.push_back({dof, entry.first});
 }
 
-double FemBody::critical_time_step() const {
+std::optional<double> FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.
   const int dim = mesh_.dimension, n = npc_ * dim;

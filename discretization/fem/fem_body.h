@@ -35,7 +35,7 @@ class FemBody final : public DiscreteBody {
   void consistent_mass(const BlockSink& sink) const override;
   void external_force(double t, Vector& f) const override;
   std::vector<DirichletDof> dirichlet(double t) const override { return dirichlet_; }
-  double critical_time_step() const override;
+  std::optional<double> critical_time_step() const override;
 
   std::vector<Index> select_nodes(const Selection& selection) const override;
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override;

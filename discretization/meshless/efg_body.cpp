@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "core/check.h"
-#include "discretization/critical_step_bound.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "problem/selection.h"
 
@@ -104,10 +103,7 @@ double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector&
   const double* g = c.shapes.gradients_of(q);
   const double w = c.points.weight[q], alpha = c.alpha[q];
   const Vec3& normal = c.points.normal[q];
-  Vec3 uh = Vec3::Zero();
-  for (Index a = 0; a < n; ++a)
-    for (int i = 0; i < dim; ++i) uh[i] += phi[a] * u[dim * near[a] + i];
-  const Vec3 d = c.projection * (uh - c.value);
+  const Vec3 d = c.projection * (interpolated_displacement(c.shapes, q, u) - c.value);
   double energy = 0.5 * w * alpha * d.squaredNorm();
   Vec3 Pn = Vec3::Zero();
   std::vector<Mat3> T;  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
@@ -154,7 +150,7 @@ void EfgBody::internal_force(const Vector& u, Vector& f) const {
 #pragma omp parallel for schedule(static)
   for (Index p = 0; p < points_.point_count(); ++p)
     stress_[p] = points_.weight(p) * law_.stress(deformation_gradient(points_.shapes(), p, u));
-  points_.gather(stress_, {}, f);
+  points_.gather(stress_, f);
   constraint_terms(u, &f);
 }
 
@@ -169,32 +165,12 @@ double EfgBody::strain_energy(const Vector& u) const {
 
 void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  // Blocks are computed in parallel and handed to the sink one at a time (the
-  // blocks of nearby points overlap almost entirely).
-#pragma omp parallel
-  {
-    std::vector<double> block;
-    std::vector<Index> dofs;
-    Mat3 P;
-    Mat9 dPdF;
-#pragma omp for schedule(dynamic, 64)
-    for (Index p = 0; p < points_.point_count(); ++p) {
-      points_.neighbour_dofs(p, dofs);
-      block.assign(dofs.size() * dofs.size(), 0.0);
-      law_.stress_and_tangent(deformation_gradient(points_.shapes(), p, u), P, dPdF);
-      points_.add_material_block(p, dPdF, points_.weight(p), block);
-#pragma omp critical(kerf_efg_sink)
-      sink(dofs, block);
-    }
-  }
+  assemble_material_blocks(points_.shapes(), points_.weights(), law_, u, sink);
   std::vector<double> block;
   std::vector<Index> dofs;
-  const int dim = domain_.dimension();
   for (const WeakConstraint& c : constraints_)
     for (Index q = 0; q < c.shapes.point_count(); ++q) {
-      dofs.clear();
-      for (Index K : c.shapes.neighbours.of(q))
-        for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+      neighbour_dofs(c.shapes, q, dofs);
       block.assign(dofs.size() * dofs.size(), 0.0);
       constraint_point(c, q, u, nullptr, &block);
       sink(dofs, block);
@@ -205,23 +181,20 @@ void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
 void EfgBody::visit_couplings(const CouplingVisitor& visit) const {
   std::vector<Index> dofs;
   for (Index p = 0; p < points_.point_count(); ++p) {
-    points_.neighbour_dofs(p, dofs);
+    neighbour_dofs(points_.shapes(), p, dofs);
     visit(dofs);
   }
   // Boundary points couple nodes whose supports reach the boundary: all of
   // them are neighbours of some cell point too, but say so explicitly.
-  const int dim = domain_.dimension();
   for (const WeakConstraint& c : constraints_)
     for (Index q = 0; q < c.shapes.point_count(); ++q) {
-      dofs.clear();
-      for (Index K : c.shapes.neighbours.of(q))
-        for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+      neighbour_dofs(c.shapes, q, dofs);
       visit(dofs);
     }
 }
 
 Eigen::MatrixXd EfgBody::point_mass(Index p) const {
-  const Index n = static_cast<Index>(points_.neighbours(p).size());
+  const Index n = static_cast<Index>(points_.shapes().neighbours.of(p).size());
   Eigen::Map<const Eigen::VectorXd> phi(points_.shapes().values_of(p), n);
   return density_ * points_.weight(p) * phi * phi.transpose();
 }
@@ -246,7 +219,7 @@ void EfgBody::consistent_mass(const BlockSink& sink) const {
   std::vector<double> block;
   for (Index p = 0; p < points_.point_count(); ++p) {
     Eigen::MatrixXd M = point_mass(p);
-    points_.neighbour_dofs(p, dofs);
+    neighbour_dofs(points_.shapes(), p, dofs);
     const Index n = M.rows(), size = n * dim;
     block.assign(size * size, 0.0);
     for (Index a = 0; a < n; ++a)
@@ -256,22 +229,15 @@ void EfgBody::consistent_mass(const BlockSink& sink) const {
   }
 }
 
-double EfgBody::critical_time_step() const { return gershgorin_critical_step(*this); }
-
 Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {
   std::vector<Index> facets = domain_.facets_in(selection, false);
   std::vector<char> inside(domain_.facets().count(), 0);
   for (Index f : facets) inside[f] = 1;
-  const int dim = domain_.dimension();
   Vec3 total = Vec3::Zero();
   for (const WeakConstraint& c : constraints_)
     for (Index q = 0; q < c.shapes.point_count(); ++q) {
       if (!inside[c.facet[q]]) continue;
-      auto near = c.shapes.neighbours.of(q);
-      const double* phi = c.shapes.values_of(q);
-      Vec3 uh = Vec3::Zero();
-      for (std::size_t a = 0; a < near.size(); ++a)
-        for (int i = 0; i < dim; ++i) uh[i] += phi[a] * u[dim * near[a] + i];
+      const Vec3 uh = interpolated_displacement(c.shapes, q, u);
       // The force the support exerts: minus the constraint's share of f_int
       // summed over the nodes (the Nitsche adjoint term sums to zero).
       Vec3 force = -c.alpha[q] * (c.projection * (uh - c.value));

@@ -45,7 +45,7 @@ class EfgBody final : public DiscreteBody {
   void consistent_mass(const BlockSink& sink) const override;
   void external_force(double t, Vector& f) const override { f = load_; }
   std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
-  double critical_time_step() const override;
+  std::optional<double> critical_time_step() const override { return std::nullopt; }
 
   std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {

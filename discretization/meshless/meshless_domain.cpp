@@ -163,23 +163,7 @@ void MeshlessDomain::add_boundary_loads(const Scene& scene, Vector& load) const 
   }
 }
 
-Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
-  const int dim = table.dimension;
-  auto near = table.neighbours.of(point);
-  const double* g = table.gradients_of(point);
-  Mat3 F = Mat3::Identity();
-  for (std::size_t k = 0; k < near.size(); ++k)
-    for (int i = 0; i < dim; ++i)
-      for (int l = 0; l < dim; ++l) F(i, l) += u[dim * near[k] + i] * g[dim * k + l];
-  return F;
-}
-
-Mat3 MeshlessDomain::deformation_gradient_at_node(Index node, const Vector& u) const {
-  return deformation_gradient(at_nodes_, node, u);
-}
-
 void MeshlessDomain::snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const {
-  const int dim = dimension();
   const Index N = nodes_.size();
   out = BodySnapshot{};
   out.points = nodes_.positions;
@@ -195,11 +179,9 @@ void MeshlessDomain::snapshot(const Vector& u, const MaterialLaw& law, BodySnaps
   OutputField volume{"nodal_volume", 1, nodes_.volume};
   OutputField condition{"mls_condition", 1, at_nodes_.condition};
   for (Index n = 0; n < N; ++n) {
-    auto near = at_nodes_.neighbours.of(n);
-    const double* phi = at_nodes_.values_of(n);
-    for (std::size_t k = 0; k < near.size(); ++k)
-      for (int i = 0; i < dim; ++i) displacement.values[3 * n + i] += phi[k] * u[dim * near[k] + i];
-    Mat3 sigma = law.cauchy_stress(deformation_gradient_at_node(n, u));
+    const Vec3 uh = interpolated_displacement(at_nodes_, n, u);
+    for (int i = 0; i < 3; ++i) displacement.values[3 * n + i] = uh[i];
+    Mat3 sigma = law.cauchy_stress(deformation_gradient(at_nodes_, n, u));
     for (int k = 0; k < 9; ++k) stress.values[9 * n + k] = sigma(k / 3, k % 3);
     mises.values[n] = von_mises(sigma);
   }

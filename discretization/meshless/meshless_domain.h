@@ -65,8 +65,6 @@ class MeshlessDomain {
   /// Nodes as VTK vertices with the MLS displacement u_h(x_I), Cauchy and von
   /// Mises stress at the nodes, support radius, nodal volume, condition number.
   void snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const;
-  /// F at node I from the MLS gradients at the node.
-  Mat3 deformation_gradient_at_node(Index node, const Vector& u) const;
 
  private:
   NodeSet nodes_;
@@ -80,8 +78,5 @@ class MeshlessDomain {
   double domain_size_;
   ShapeTable at_nodes_;
 };
-
-/// Deformation gradient F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
-Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);
 
 }  // namespace kerf

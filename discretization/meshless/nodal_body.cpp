@@ -6,28 +6,44 @@
 #include <cmath>
 
 #include "core/check.h"
-#include "discretization/critical_step_bound.h"
 #include "discretization/meshless/mls_shape.h"
+#include "discretization/meshless/point_integration.h"
 
 namespace kerf {
 namespace {
 
-std::vector<double> pair_stiffnesses(const NodeSet& nodes, const ShapeTable& table, double c, double mu) {
-  std::vector<double> k(table.neighbours.index.size(), 0.0);
-  if (c == 0.0) return k;
+/// The stabilisation's per-slot stiffness k_IJ and lever k_IJ X_IJ, and per
+/// node sum_J k_IJ X_IJ and sum_J k_IJ X_IJ X_IJ^T.
+struct PairTerms {
+  std::vector<double> stiffness, lever, lever_sum, lever_moment;
+};
+
+PairTerms pair_terms(const NodeSet& nodes, const ShapeTable& table, double c, double mu) {
+  const int dim = nodes.dimension;
+  const std::size_t slots = table.neighbours.index.size();
+  PairTerms t{std::vector<double>(slots, 0.0), std::vector<double>(dim * slots, 0.0),
+              std::vector<double>(3 * nodes.size(), 0.0), std::vector<double>(9 * nodes.size(), 0.0)};
   for (Index I = 0; I < table.point_count(); ++I) {
     auto near = table.neighbours.of(I);
     const Index s0 = table.neighbours.start[I];
     double normaliser = 0.0;
     for (std::size_t j = 0; j < near.size(); ++j) {
-      const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
-      k[s0 + j] = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
-      normaliser += k[s0 + j] * X.squaredNorm();
+      const double w = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
+      t.stiffness[s0 + j] = near[j] == I ? 0.0 : w;
+      normaliser += w * (nodes.positions[near[j]] - nodes.positions[I]).squaredNorm();
     }
-    for (std::size_t j = 0; j < near.size(); ++j)
-      k[s0 + j] = near[j] == I ? 0.0 : c * mu * nodes.volume[I] * k[s0 + j] / normaliser;
+    for (std::size_t j = 0; j < near.size(); ++j) {
+      const Index s = s0 + static_cast<Index>(j);
+      const double k = t.stiffness[s] *= c * mu * nodes.volume[I] / normaliser;
+      const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
+      for (int i = 0; i < dim; ++i) {
+        t.lever[dim * s + i] = k * X[i];
+        t.lever_sum[3 * I + i] += k * X[i];
+        for (int l = 0; l < dim; ++l) t.lever_moment[9 * I + 3 * i + l] += k * X[i] * X[l];
+      }
+    }
   }
-  return k;
+  return t;
 }
 
 }  // namespace
@@ -36,36 +52,27 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
     : domain_(std::move(domain)),
       law_(scene.material),
       density_(scene.material.density),
-      points_(domain_.at_nodes(), domain_.nodes().volume, domain_.nodes().size()),
       stabilized_(scene.discretization.meshless.stabilization) {
   const NodeSet& nodes = domain_.nodes();
-  pair_stiffness_ = pair_stiffnesses(nodes, points_.shapes(), stabilized_ ? default_stabilization : 0.0,
-                                     law_.lame().mu);
+  if (stabilized_) {
+    PairTerms t = pair_terms(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu);
+    pair_stiffness_ = std::move(t.stiffness);
+    pair_lever_ = std::move(t.lever);
+    lever_sum_ = std::move(t.lever_sum);
+    lever_moment_ = std::move(t.lever_moment);
+  }
   const int dim = domain_.dimension();
   load_ = Vector::Zero(dof_count());
   for (Index I = 0; I < nodes.size(); ++I)
     for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
   domain_.add_boundary_loads(scene, load_);
   dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
-  const ShapeTable& table = points_.shapes();
-  pair_lever_.assign(dim * table.neighbours.index.size(), 0.0);
-  lever_sum_.assign(3 * nodes.size(), 0.0);
-  lever_moment_.assign(9 * nodes.size(), 0.0);
-  for (Index I = 0; I < nodes.size(); ++I)
-    for (Index s = table.neighbours.start[I]; s < table.neighbours.start[I + 1]; ++s) {
-      const Vec3 X = nodes.positions[table.neighbours.index[s]] - nodes.positions[I];
-      for (int i = 0; i < dim; ++i) {
-        pair_lever_[dim * s + i] = pair_stiffness_[s] * X[i];
-        lever_sum_[3 * I + i] += pair_stiffness_[s] * X[i];
-        for (int l = 0; l < dim; ++l) lever_moment_[9 * I + 3 * i + l] += pair_stiffness_[s] * X[i] * X[l];
-      }
-    }
 }
 
 template <int Dim, bool Stabilized>
 void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   const NodeSet& nodes = domain_.nodes();
-  const ShapeTable& table = points_.shapes();
+  const ShapeTable& table = domain_.at_nodes();
   const Index N = nodes.size(), dofs = Dim * N;
   const Index* start = table.neighbours.start.data();
   const Index* index = table.neighbours.index.data();
@@ -165,16 +172,16 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   const int dim = domain_.dimension();
   const NodeSet& nodes = domain_.nodes();
-  const ShapeTable& table = points_.shapes();
+  const ShapeTable& table = domain_.at_nodes();
   double material = 0.0, stab = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : material, stab)
   for (Index I = 0; I < nodes.size(); ++I) {
     const Mat3 F = deformation_gradient(table, I, u);
     material += nodes.volume[I] * law_.energy(F);
+    if (!stabilized_) continue;
     auto near = table.neighbours.of(I);
     for (std::size_t j = 0; j < near.size(); ++j) {
       const Index s = table.neighbours.start[I] + static_cast<Index>(j);
-      if (pair_stiffness_[s] == 0.0) continue;
       Vec3 e = Vec3::Zero(), X = nodes.positions[near[j]] - nodes.positions[I];
       for (int i = 0; i < dim; ++i) e[i] = u[dim * near[j] + i] - u[dim * I + i];
       e -= (F - Mat3::Identity()) * X;
@@ -196,7 +203,7 @@ double NodalBody::stabilization_energy(const Vector& u) const {
 void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) const {
   const int dim = domain_.dimension();
   const NodeSet& nodes = domain_.nodes();
-  const ShapeTable& table = points_.shapes();
+  const ShapeTable& table = domain_.at_nodes();
   auto near = table.neighbours.of(I);
   const Index n = static_cast<Index>(near.size()), s0 = table.neighbours.start[I], size = n * dim;
   const double* g = table.gradients_of(I);
@@ -221,34 +228,16 @@ void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) con
 
 void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  const NodeSet& nodes = domain_.nodes();
-  // Blocks are computed in parallel and handed to the sink one at a time: the
-  // blocks of neighbouring nodes overlap almost entirely, so there is no
-  // conflict-free order worth having.
-#pragma omp parallel
-  {
-    std::vector<double> block;
-    std::vector<Index> dofs;
-    Mat3 P;
-    Mat9 dPdF;
-#pragma omp for schedule(dynamic, 16)
-    for (Index I = 0; I < nodes.size(); ++I) {
-      points_.neighbour_dofs(I, dofs);
-      block.assign(dofs.size() * dofs.size(), 0.0);
-      law_.stress_and_tangent(deformation_gradient(points_.shapes(), I, u), P, dPdF);
-      points_.add_material_block(I, dPdF, nodes.volume[I], block);
-      if (stabilized_) add_stabilization_block(I, block);
-#pragma omp critical(kerf_nodal_sink)
-      sink(dofs, block);
-    }
-  }
+  BlockExtra stabilization;
+  if (stabilized_) stabilization = [this](Index I, std::vector<double>& block) { add_stabilization_block(I, block); };
+  assemble_material_blocks(domain_.at_nodes(), domain_.nodes().volume, law_, u, sink, stabilization);
   if (f) internal_force(u, *f);
 }
 
 void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
   std::vector<Index> dofs;
   for (Index I = 0; I < node_count(); ++I) {
-    points_.neighbour_dofs(I, dofs);
+    neighbour_dofs(domain_.at_nodes(), I, dofs);
     visit(dofs);
   }
 }
@@ -266,7 +255,5 @@ void NodalBody::consistent_mass(const BlockSink& sink) const {
   Vector m = lumped_mass();
   for (Index d = 0; d < dof_count(); ++d) sink(std::span<const Index>(&d, 1), std::span<const double>(&m[d], 1));
 }
-
-double NodalBody::critical_time_step() const { return gershgorin_critical_step(*this); }
 
 }  // namespace kerf

@@ -12,7 +12,6 @@
 
 #include "discretization/discrete_body.h"
 #include "discretization/meshless/meshless_domain.h"
-#include "discretization/meshless/point_integration.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -41,7 +40,7 @@ class NodalBody final : public DiscreteBody {
   void consistent_mass(const BlockSink& sink) const override;
   void external_force(double t, Vector& f) const override { f = load_; }
   std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
-  double critical_time_step() const override;
+  std::optional<double> critical_time_step() const override { return std::nullopt; }
 
   std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
@@ -67,11 +66,11 @@ class NodalBody final : public DiscreteBody {
   MeshlessDomain domain_;
   MaterialLaw law_;
   double density_;
-  PointIntegration points_;
-  std::vector<double> pair_stiffness_;  // per slot: k_IJ (N/m); 0 for J = I or without stabilisation
   bool stabilized_;
   Vector load_;
   std::vector<DirichletDof> dirichlet_;
+  // The stabilisation (empty without it); slots are those of domain_.at_nodes().
+  std::vector<double> pair_stiffness_;  // per slot: k_IJ (N/m); 0 for J = I
   std::vector<double> pair_lever_;      // per slot: k_IJ X_IJ, X_IJ = x_J - x_I, dim entries (N)
   std::vector<double> lever_sum_;       // per node: sum_J k_IJ X_IJ, 3 entries (N)
   std::vector<double> lever_moment_;    // per node: sum_J k_IJ X_IJ X_IJ^T, 3 x 3 row-major (N m)

@@ -94,17 +94,13 @@ NodeSet lattice_nodes(int dim, const Box& box, double spacing, std::span<const R
   return s;
 }
 
-NodeSet mesh_nodes(const Mesh& mesh, double support_factor) {
+NodeSet mesh_nodes(const Mesh& input, double support_factor) {
+  // Corner nodes only: quadratic meshes' mid-edge nodes are not lattice-like nodes.
+  const Mesh mesh = corner_mesh(input);
   const int dim = mesh.dimension, corners = dim + 1;
   NodeSet s;
   s.dimension = dim;
-  // Corner nodes only: quadratic meshes' mid-edge nodes are not lattice-like nodes.
-  std::vector<Index> index(mesh.nodes.size(), -1);
-  for (Index c = 0; c < mesh.cell_count(); ++c)
-    for (int a = 0; a < corners; ++a) {
-      Index n = mesh.cell(c)[a];
-      if (index[n] < 0) index[n] = static_cast<Index>(s.positions.size()), s.positions.push_back(mesh.nodes[n]);
-    }
+  s.positions = mesh.nodes;
   const Index count = s.size();
   s.volume.assign(count, 0.0);
   std::vector<double> edge_sum(count, 0.0);
@@ -113,11 +109,11 @@ NodeSet mesh_nodes(const Mesh& mesh, double support_factor) {
     auto n = mesh.cell(c);
     double share = std::abs(cell_measure(mesh, c)) / corners;
     for (int a = 0; a < corners; ++a) {
-      s.volume[index[n[a]]] += share;
+      s.volume[n[a]] += share;
       for (int b = 0; b < corners; ++b) {
         if (a == b) continue;
-        edge_sum[index[n[a]]] += (mesh.nodes[n[a]] - mesh.nodes[n[b]]).norm();
-        ++edge_count[index[n[a]]];
+        edge_sum[n[a]] += (mesh.nodes[n[a]] - mesh.nodes[n[b]]).norm();
+        ++edge_count[n[a]];
       }
     }
   }
@@ -125,10 +121,7 @@ NodeSet mesh_nodes(const Mesh& mesh, double support_factor) {
     s.spacing.push_back(edge_sum[i] / edge_count[i]);
     s.support.push_back(support_factor * s.spacing.back());
   }
-  BoundaryFacets facets = boundary_facets(mesh);
-  s.on_boundary.assign(count, 0);
-  for (Index n : facets.nodes)
-    if (index[n] >= 0) s.on_boundary[index[n]] = 1;
+  s.on_boundary = boundary_node_flags(mesh, boundary_facets(mesh));
   return s;
 }
 

@@ -22,12 +22,11 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<double> weight
   for (Index s = 0; s < slots; ++s) users_.index[next[nb.index[s]]++] = s;
 }
 
-void PointIntegration::gather(std::span<const Mat3> stress, std::span<const Vec3> slot_force, Vector& f) const {
+void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
   const int dim = shapes_.dimension;
   const Index N = users_.size();
   f.resize(dim * N);
   const double* g = shapes_.gradient.data();
-  const bool pairs = !slot_force.empty();
 #pragma omp parallel for schedule(static)
   for (Index K = 0; K < N; ++K) {
     Vec3 acc = Vec3::Zero();
@@ -38,17 +37,16 @@ void PointIntegration::gather(std::span<const Mat3> stress, std::span<const Vec3
         acc += Q * Vec3(gs[0], gs[1], gs[2]);
       else
         acc += Q * Vec3(gs[0], gs[1], 0.0);
-      if (pairs) acc += slot_force[s];
     }
     for (int i = 0; i < dim; ++i) f[dim * K + i] = acc[i];
   }
 }
 
-void PointIntegration::add_material_block(Index p, const Mat9& dPdF, double scale,
-                                          std::vector<double>& block) const {
-  const int dim = shapes_.dimension;
-  const Index n = static_cast<Index>(neighbours(p).size()), size = n * dim;
-  const double* g = shapes_.gradients_of(p);
+void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
+                        std::vector<double>& block) {
+  const int dim = table.dimension;
+  const Index n = static_cast<Index>(table.neighbours.of(point).size()), size = n * dim;
+  const double* g = table.gradients_of(point);
   for (Index b = 0; b < n; ++b)
     for (int k = 0; k < dim; ++k) {
       // T(i, j) = sum_l dP(i,j)/dF(k,l) g_b(l)
@@ -65,11 +63,25 @@ void PointIntegration::add_material_block(Index p, const Mat9& dPdF, double scal
     }
 }
 
-void PointIntegration::neighbour_dofs(Index p, std::vector<Index>& dofs) const {
-  const int dim = shapes_.dimension;
-  dofs.clear();
-  for (Index K : neighbours(p))
-    for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+void assemble_material_blocks(const ShapeTable& table, std::span<const double> weights, const MaterialLaw& law,
+                              const Vector& u, const BlockSink& sink, const BlockExtra& extra) {
+#pragma omp parallel
+  {
+    std::vector<double> block;
+    std::vector<Index> dofs;
+    Mat3 P;
+    Mat9 dPdF;
+#pragma omp for schedule(dynamic, 16)
+    for (Index p = 0; p < table.point_count(); ++p) {
+      neighbour_dofs(table, p, dofs);
+      block.assign(dofs.size() * dofs.size(), 0.0);
+      law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
+      add_material_block(table, p, dPdF, weights[p], block);
+      if (extra) extra(p, block);
+#pragma omp critical(kerf_meshless_sink)
+      sink(dofs, block);
+    }
+  }
 }
 
 }  // namespace kerf

@@ -54,4 +54,32 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
   return t;
 }
 
+Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
+  const int dim = table.dimension;
+  auto near = table.neighbours.of(point);
+  const double* g = table.gradients_of(point);
+  Mat3 F = Mat3::Identity();
+  for (std::size_t k = 0; k < near.size(); ++k)
+    for (int i = 0; i < dim; ++i)
+      for (int l = 0; l < dim; ++l) F(i, l) += u[dim * near[k] + i] * g[dim * k + l];
+  return F;
+}
+
+Vec3 interpolated_displacement(const ShapeTable& table, Index point, const Vector& u) {
+  const int dim = table.dimension;
+  auto near = table.neighbours.of(point);
+  const double* phi = table.values_of(point);
+  Vec3 value = Vec3::Zero();
+  for (std::size_t k = 0; k < near.size(); ++k)
+    for (int i = 0; i < dim; ++i) value[i] += phi[k] * u[dim * near[k] + i];
+  return value;
+}
+
+void neighbour_dofs(const ShapeTable& table, Index point, std::vector<Index>& dofs) {
+  const int dim = table.dimension;
+  dofs.clear();
+  for (Index K : table.neighbours.of(point))
+    for (int i = 0; i < dim; ++i) dofs.push_back(dim * K + i);
+}
+
 }  // namespace kerf

@@ -29,4 +29,11 @@ struct ShapeTable {
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy);
 
+/// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
+Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);
+/// u_h = sum_k phi_k u_{node_k} at one point (m; z = 0 in 2D).
+Vec3 interpolated_displacement(const ShapeTable& table, Index point, const Vector& u);
+/// The dofs of one point's neighbours, node-major.
+void neighbour_dofs(const ShapeTable& table, Index point, std::vector<Index>& dofs);
+
 }  // namespace kerf

@@ -49,8 +49,9 @@ output:
   auto summary = run_scene(scene, options).summary;
   double error = 0.0;
   const double ys[] = {0.02, 0.04, 0.06, 0.08};
+  const char* names[] = {"p1", "p2", "p3", "p4"};
   for (int k = 0; k < 4; ++k) {
-    auto u = summary["probes"]["p" + std::to_string(k + 1)]["displacement"];
+    auto u = summary["probes"][names[k]]["displacement"];
     error = std::max(error, std::hypot(u[0].get<double>(), u[1].get<double>() - exact_uy(ys[k])));
   }
   return error / std::abs(exact_uy(H));

@@ -5,10 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
-#include "app/run_scene.h"
-#include "problem/scene_reader.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -16,19 +15,13 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-json run(const std::string& scene_file, std::vector<std::string> overrides, const std::string& test) {
-  overrides.push_back("output.dir=" + testing::output_directory(test));
-  Scene scene = read_scene(testing::source_path(scene_file), overrides);
-  RunOptions options;
-  options.quiet = true;
-  return run_scene(scene, options).summary;
-}
 
 double tip_deflection(const json& s) { return -s["probes"]["tip"]["displacement"][2].get<double>(); }
 
 TEST(MeshlessScenes, CantileverWithEfgAndNodalAgreesWithFemTet10Within3Percent) {
   const double weight = 1000 * 9.81 * 0.1 * 0.02 * 0.02;
-  json fem = run("scenes/cantilever.yaml", {"discretization.fem.size=0.0025", "output.vtk=false"}, "cantilever_fem");
+  json fem = testing::run_scene_file("scenes/cantilever.yaml", {"discretization.fem.size=0.0025", "output.vtk=false"},
+                                     "cantilever_fem");
   const double reference = tip_deflection(fem);
   // EFG with Nitsche's method on the clamp; nodal integration with the clamp on
   // the nodal parameters (what the paper does).
@@ -37,7 +30,7 @@ TEST(MeshlessScenes, CantileverWithEfgAndNodalAgreesWithFemTet10Within3Percent) 
       {"nodal", {"discretization.method=nodal", "discretization.meshless.spacing=0.002"}}};
   for (auto [method, overrides] : runs) {
     overrides.push_back("output.vtk=false");
-    json s = run("scenes/cantilever.yaml", overrides, "cantilever_" + method);
+    json s = testing::run_scene_file("scenes/cantilever.yaml", overrides, "cantilever_" + method);
     ASSERT_EQ(s["status"], "ok") << method;
     const double w = tip_deflection(s);
     std::printf("cantilever %s: tip %.6e m, FEM tet10 %.6e m, difference %.2f%%\n", method.c_str(), w, reference,
@@ -67,7 +60,7 @@ TEST(MeshlessScenes, PlateInTensionPatchTest) {
       {"nodal", {"discretization.method=nodal", "solve.analysis=static"}, 1e-2}};
   for (Case c : cases) {
     c.overrides.push_back("output.vtk=false");
-    json s = run("scenes/plate_tension_2d.yaml", c.overrides, "plate_patch");
+    json s = testing::run_scene_file("scenes/plate_tension_2d.yaml", c.overrides, "plate_patch");
     ASSERT_EQ(s["status"], "ok") << c.name;
     auto corner = s["probes"]["corner"]["displacement"];
     const double error = std::hypot(corner[0].get<double>() - ux, corner[1].get<double>() - uy) / std::hypot(ux, uy);
@@ -99,12 +92,10 @@ std::map<std::string, std::vector<double>> read_probes(const std::string& dir) {
 // gravity (large rotations): central differences conserve a shadow energy, so
 // kinetic + strain - external work must stay near zero throughout.
 TEST(MeshlessScenes, UndampedNodalRunKeepsEnergyBoundedFor10000Steps) {
-  const std::string dir = testing::output_directory("nodal_energy");
-  json s = run("scenes/tissue_sag_nodal.yaml",
-               {"material.damping.mass=0", "solve.duration=10", "output.vtk=false", "output.dir=" + dir},
-               "nodal_energy");
+  json s = testing::run_scene_file("scenes/tissue_sag_nodal.yaml",
+                                   {"material.damping.mass=0", "solve.duration=10", "output.vtk=false"}, "nodal_energy");
   ASSERT_EQ(s["status"], "ok");
-  auto probes = read_probes(dir);
+  auto probes = read_probes(s["scene"]["output"]["dir"].get<std::string>());
   ASSERT_EQ(probes["time"].size(), 10001u);
   double drift = 0.0, work = 0.0;
   for (std::size_t k = 0; k < probes["time"].size(); ++k) {

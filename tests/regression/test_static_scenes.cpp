@@ -17,13 +17,6 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-json run(const std::string& scene_file, std::vector<std::string> overrides, const std::string& test) {
-  overrides.push_back("output.dir=" + testing::output_directory(test));
-  Scene scene = read_scene(testing::source_path(scene_file), overrides);
-  RunOptions options;
-  options.quiet = true;
-  return run_scene(scene, options).summary;
-}
 
 // Euler-Bernoulli bending plus Timoshenko shear deflection of a cantilever
 // of rectangular section b x h under its own weight q = rho g b h.
@@ -34,7 +27,7 @@ double beam_tip_deflection(double E, double nu, double rho, double g, double L, 
 }
 
 TEST(StaticScenes, CantileverTet10MatchesBeamTheoryWithin3Percent) {
-  json s = run("scenes/cantilever.yaml", {"discretization.fem.size=0.0025", "output.vtk=false"}, "cantilever_fine");
+  json s = testing::run_scene_file("scenes/cantilever.yaml", {"discretization.fem.size=0.0025", "output.vtk=false"}, "cantilever_fine");
   ASSERT_EQ(s["status"], "ok");
   double w = -s["probes"]["tip"]["displacement"][2].get<double>();
   double beam = beam_tip_deflection(1e6, 0.3, 1000, 9.81, 0.1, 0.02, 0.02);
@@ -46,7 +39,7 @@ TEST(StaticScenes, CantileverTet10MatchesBeamTheoryWithin3Percent) {
 }
 
 TEST(StaticScenes, PlateInTensionHasTheExactPlaneStrainSolution) {
-  json s = run("scenes/plate_tension_2d.yaml", {}, "plate");
+  json s = testing::run_scene_file("scenes/plate_tension_2d.yaml", {}, "plate");
   ASSERT_EQ(s["status"], "ok");
   // Uniform stress sigma_xx = 1000 Pa; plane strain: eps_xx = (1 - nu^2) sigma / E, eps_yy = -nu (1 + nu) sigma / E.
   const double E = 1e6, nu = 0.3, sigma = 1000, L = 0.1, H = 0.05;
@@ -61,7 +54,7 @@ TEST(StaticScenes, PlateInTensionHasTheExactPlaneStrainSolution) {
 // reproduces exactly (a nonlinear patch test). The reference comes from the
 // material law: the lateral stretch l2 with P22(diag(l1, l2, l2)) = 0.
 TEST(StaticScenes, LargeUniaxialStretchMatchesTheHomogeneousSolution) {
-  const double L = 0.02, H = 0.01, stretch = 1.5;
+  const double H = 0.01, stretch = 1.5;  // bar 0.02 long, H x H section
   for (MaterialModel model_value : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
     const char* model = to_string(model_value);
     MaterialLaw law(Material{model_value, 1.0e4, 0.3, 1000.0, 0.0, 0.0});
@@ -105,7 +98,7 @@ output:
 }
 
 TEST(StaticScenes, MeshFileSceneCarriesItsWeight) {
-  json s = run("scenes/cube_from_mesh.yaml", {"output.vtk=false"}, "cube_from_mesh");
+  json s = testing::run_scene_file("scenes/cube_from_mesh.yaml", {"output.vtk=false"}, "cube_from_mesh");
   ASSERT_EQ(s["status"], "ok");
   EXPECT_EQ(s["counts"]["nodes"], 337);
   EXPECT_NEAR(s["probes"]["base"]["reaction"][2].get<double>(), 1000 * 9.81 * 0.02 * 0.02 * 0.02, 1e-12);
@@ -113,7 +106,7 @@ TEST(StaticScenes, MeshFileSceneCarriesItsWeight) {
 }
 
 TEST(StaticScenes, LinearCholmodRunBuildsNoMassAndNoPetsc) {
-  json s = run("scenes/cantilever.yaml", {"discretization.fem.element=tet4", "discretization.fem.size=0.01",
+  json s = testing::run_scene_file("scenes/cantilever.yaml", {"discretization.fem.element=tet4", "discretization.fem.size=0.01",
                                           "output.vtk=false"}, "stages");
   auto stages = s["stages"].get<std::vector<std::string>>();
   auto has = [&](const char* name) { return std::find(stages.begin(), stages.end(), name) != stages.end(); };
@@ -128,7 +121,7 @@ TEST(StaticScenes, LinearCholmodRunBuildsNoMassAndNoPetsc) {
 TEST(StaticScenes, NonlinearMaterialsConvergeAndAgreeAtSmallLoads) {
   double reference = 0.0;
   for (const char* model : {"linear", "corotational", "stvk", "neohookean"}) {
-    json s = run("scenes/cantilever.yaml",
+    json s = testing::run_scene_file("scenes/cantilever.yaml",
                  {"material.model=" + std::string(model), "material.young=1e8", "discretization.fem.size=0.01",
                   "output.vtk=false"},
                  std::string("small_load_") + model);
@@ -142,11 +135,11 @@ TEST(StaticScenes, NonlinearMaterialsConvergeAndAgreeAtSmallLoads) {
 TEST(StaticScenes, PetscSolverAgreesWithCholmod) {
   std::vector<std::string> common = {"discretization.fem.element=tet4", "discretization.fem.size=0.005",
                                      "output.vtk=false"};
-  json direct = run("scenes/cantilever.yaml", common, "cholmod");
+  json direct = testing::run_scene_file("scenes/cantilever.yaml", common, "cholmod");
   auto petsc_options = common;
   petsc_options.push_back("solve.linear_solver=petsc");
   petsc_options.push_back("solve.petsc=-ksp_type cg -pc_type gamg -ksp_rtol 1e-12");
-  json petsc = run("scenes/cantilever.yaml", petsc_options, "petsc");
+  json petsc = testing::run_scene_file("scenes/cantilever.yaml", petsc_options, "petsc");
   ASSERT_EQ(petsc["status"], "ok");
   double a = direct["probes"]["tip"]["displacement"][2].get<double>();
   double b = petsc["probes"]["tip"]["displacement"][2].get<double>();
@@ -157,7 +150,7 @@ TEST(StaticScenes, PetscSolverAgreesWithCholmod) {
 
 TEST(StaticScenes, MisspelledPetscOptionIsReported) {
   try {
-    run("scenes/cantilever.yaml",
+    testing::run_scene_file("scenes/cantilever.yaml",
         {"discretization.fem.element=tet4", "discretization.fem.size=0.01", "output.vtk=false",
          "solve.linear_solver=petsc", "solve.petsc=-ksp_typo cg"},
         "petsc_typo");
@@ -175,7 +168,7 @@ TEST(StaticScenes, MisspelledPetscOptionIsReported) {
 TEST(StaticScenes, EveryLinearBackendGivesTheSameAnswer) {
   std::vector<double> tips;
   for (const char* solver : {"cholmod", "ldlt", "cg"}) {
-    json s = run("scenes/cantilever.yaml",
+    json s = testing::run_scene_file("scenes/cantilever.yaml",
                  {"discretization.fem.element=tet4", "discretization.fem.size=0.01", "output.vtk=false",
                   std::string("solve.linear_solver=") + solver},
                  std::string("backend_") + solver);

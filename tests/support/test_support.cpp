@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "app/run_scene.h"
 #include "geometry/box_mesher.h"
 #include "problem/scene_reader.h"
 
@@ -35,5 +36,14 @@ SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u) {
 }
 
 std::string source_path(const std::string& relative) { return std::string(KERF_SOURCE_DIR) + "/" + relative; }
+
+nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector<std::string> overrides,
+                                      const std::string& test_name) {
+  overrides.push_back("output.dir=" + output_directory(test_name));
+  Scene scene = read_scene(source_path(scene_file), overrides);
+  RunOptions options;
+  options.quiet = true;
+  return run_scene(scene, options).summary;
+}
 
 }  // namespace kerf::testing

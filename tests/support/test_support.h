@@ -3,6 +3,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "discretization/fem/fem_body.h"
 #include "problem/scene.h"
 #include "solvers/sparse_assembly.h"
@@ -22,5 +24,10 @@ Mesh unit_box_mesh(int dimension, int order, double size);
 SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u);
 
 std::string source_path(const std::string& relative);
+
+/// Runs a scene file of the source tree quietly with `overrides`, output under
+/// the test's own directory; returns summary.json.
+nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector<std::string> overrides,
+                                      const std::string& test_name);
 
 }  // namespace kerf::testing
