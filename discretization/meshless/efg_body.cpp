@@ -95,7 +95,7 @@ void EfgBody::build_constraints(const Scene& scene) {
 }
 
 double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector& u, Vector* f,
-                                 std::vector<double>* block) const {
+                                 std::vector<double>* block, std::vector<Mat3>& T) const {
   const int dim = domain_.dimension();
   auto near = c.shapes.neighbours.of(q);
   const Index n = static_cast<Index>(near.size()), size = n * dim;
@@ -106,8 +106,7 @@ double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector&
   const Vec3 d = c.projection * (interpolated_displacement(c.shapes, q, u) - c.value);
   double energy = 0.5 * w * alpha * d.squaredNorm();
   Vec3 Pn = Vec3::Zero();
-  std::vector<Mat3> T;  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
-  if (nitsche_) {
+  if (nitsche_) {  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
     Mat3 P;
     Mat9 A;
     law_.stress_and_tangent(deformation_gradient(c.shapes, q, u), P, A);
@@ -140,8 +139,9 @@ double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector&
 
 double EfgBody::constraint_terms(const Vector& u, Vector* f) const {
   double energy = 0.0;
+  std::vector<Mat3> scratch;
   for (const WeakConstraint& c : constraints_)
-    for (Index q = 0; q < c.shapes.point_count(); ++q) energy += constraint_point(c, q, u, f, nullptr);
+    for (Index q = 0; q < c.shapes.point_count(); ++q) energy += constraint_point(c, q, u, f, nullptr, scratch);
   return energy;
 }
 
@@ -168,11 +168,12 @@ void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   assemble_material_blocks(points_.shapes(), points_.weights(), law_, u, sink);
   std::vector<double> block;
   std::vector<Index> dofs;
+  std::vector<Mat3> scratch;
   for (const WeakConstraint& c : constraints_)
     for (Index q = 0; q < c.shapes.point_count(); ++q) {
       neighbour_dofs(c.shapes, q, dofs);
       block.assign(dofs.size() * dofs.size(), 0.0);
-      constraint_point(c, q, u, nullptr, &block);
+      constraint_point(c, q, u, nullptr, &block, scratch);
       sink(dofs, block);
     }
   if (f) internal_force(u, *f);

@@ -10,7 +10,6 @@
 // round-off. Its tangent drops the term (u - u_bar) . dA/dF, which vanishes
 // for linear materials (exact tangent) and is small where the constraint
 // holds. `point` selections constrain the nearest node's parameter.
-#include <array>
 #include <vector>
 
 #include "discretization/discrete_body.h"
@@ -68,9 +67,9 @@ class EfgBody final : public DiscreteBody {
   };
   /// The constraint's contribution at boundary point q: residual into f (when
   /// given), tangent block into `block` over the point's neighbours (when
-  /// given); returns its energy.
+  /// given); returns its energy. `T` is scratch, reused between points.
   double constraint_point(const WeakConstraint& c, Index q, const Vector& u, Vector* f,
-                          std::vector<double>* block) const;
+                          std::vector<double>* block, std::vector<Mat3>& T) const;
   double constraint_terms(const Vector& u, Vector* f) const;
   void build_constraints(const Scene& scene);
   /// rho phi_a phi_b w summed over the integration points, per point (scalar per node pair).
