@@ -69,6 +69,7 @@ int run_command_line(const std::vector<std::string>& args) {
     KERF_CHECK(a.command == "run" || a.command == "check", "unknown command '", a.command, "'\n", usage);
     KERF_CHECK(!a.target.empty(), a.command, " needs a scene file\n", usage);
     scene = read_scene(a.target, a.overrides);
+    refuse_unrunnable(scene);
     if (a.command == "check") {
       std::cout << scene_to_json(scene).dump(2) << "\n";
       return 0;

@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/run_report.h"
 #include "discretization/body_factory.h"
+#include "geometry/cut_surface.h"
 #include "kerf/version.h"
 #include "output/atomic_file.h"
 #include "output/probe_table.h"
@@ -25,12 +26,22 @@ using json = nlohmann::ordered_json;
 
 std::atomic<bool> interrupted{false};
 
-void refuse_unsupported(const Scene& scene) {
+}  // namespace
+
+void refuse_unrunnable(const Scene& scene) {
   KERF_CHECK(scene.contact.empty(), scene.contact.front().where.describe(),
              ": contact is not implemented yet (it arrives with the studies, issue 5)");
-  KERF_CHECK(scene.cuts.empty(), scene.cuts.front().where.describe(),
-             ": cuts are not implemented yet (they arrive with issue 4)");
+  for (const Cut& cut : scene.cuts) {
+    KERF_CHECK(scene.discretization.method != Method::fem, cut.where.describe(),
+               ": cuts in FEM (fem: remesh | remove) are not built yet; expected discretization.method efg or nodal");
+    cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
+    for (std::size_t i = 0; i < cut.times.size(); ++i)
+      KERF_CHECK(cut.times[i] <= 0.0, cut.where.describe(), ": key 'times': value ", cut.times[i], " at vertex ", i,
+                 ": progressive cutting is not built yet; expected every vertex present at t = 0");
+  }
 }
+
+namespace {
 
 json milliseconds_summary(std::vector<double> seconds) {
   if (seconds.empty()) return {{"median", 0.0}, {"mean", 0.0}, {"max", 0.0}};
@@ -55,7 +66,7 @@ void fill_report(json& summary, const RunReport& report) {
 }  // namespace
 
 RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
-  refuse_unsupported(scene);
+  refuse_unrunnable(scene);
   RunOutcome outcome;
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   std::filesystem::create_directories(outcome.directory);

@@ -17,6 +17,10 @@ struct RunOutcome {
   nlohmann::ordered_json summary;
 };
 
+/// Refuses, before any work, what the scene asks for that cannot run: checks
+/// the cuts' geometry (degenerate or folding cuts) and names what is not built.
+void refuse_unrunnable(const Scene& scene);
+
 /// Writes summary.json (status "ok"), probes.csv and the ParaView series.
 /// On failure, writes summary.json with status "error" and the message, keeps
 /// every file already written, and rethrows.

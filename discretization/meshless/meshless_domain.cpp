@@ -42,6 +42,8 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
     background_on_boundary_ = boundary_node_flags(*background_, facets_);
   }
   index_ = std::make_unique<PointIndex>(nodes_.positions);
+  for (const Cut& c : scene.cuts) cuts_.push_back(cut_surface(dimension(), c.vertices, c.times, c.where.describe()));
+  enrichment_ = make_weight_enrichment(scene.cuts, cuts_, nodes_.positions, nodes_.support, 0.0);
   at_nodes_ = shapes_at(nodes_.positions, "the node");
 }
 
@@ -55,7 +57,10 @@ const Mesh& MeshlessDomain::background() const {
 
 ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
   return shape_table(nodes_, *index_, basis_, points, what, error_context_,
-                     "expected a larger support, a linear basis, or more nodes there");
+                     enrichment_ ? "expected a larger support, a linear basis, or more nodes there (a cut hides "
+                                   "the nodes on its other side)"
+                                 : "expected a larger support, a linear basis, or more nodes there",
+                     enrichment_.get());
 }
 
 double MeshlessDomain::mean_neighbors() const {

@@ -3,7 +3,8 @@
 // their k-d tree, the body's extent (a box, or a background mesh of tets or
 // triangles), selections, point interpolation through MLS, strong constraints
 // on nodal parameters, boundary loads integrated with MLS on the background
-// mesh's boundary facets, and the ParaView snapshot of the nodes.
+// mesh's boundary facets, the scene's cuts (enriched MLS weights), and the
+// ParaView snapshot of the nodes.
 #include <memory>
 #include <optional>
 #include <span>
@@ -11,9 +12,11 @@
 #include <vector>
 
 #include "discretization/discrete_body.h"
+#include "discretization/enrichment/weight_enrichment.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "geometry/boundary_facets.h"
+#include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
 #include "problem/material.h"
 
@@ -39,6 +42,11 @@ class MeshlessDomain {
   double domain_size() const { return domain_size_; }
   const Mesh& background() const;
   const BoundaryFacets& facets() const { return facets_; }
+
+  /// The scene's cuts, checked, in scene order.
+  const std::vector<CutSurface>& cuts() const { return cuts_; }
+  /// The cuts' weight enrichment of the nodes (null without a cut present).
+  const WeightEnrichment* enrichment() const { return enrichment_.get(); }
 
   /// MLS shape functions of the nodes at `points`; a point whose moment matrix
   /// is singular is an error naming it (`what`) and the scene keys to change.
@@ -73,6 +81,8 @@ class MeshlessDomain {
   BoundaryFacets facets_;
   std::vector<char> background_on_boundary_;
   std::unique_ptr<PointIndex> index_;
+  std::vector<CutSurface> cuts_;
+  std::unique_ptr<WeightEnrichment> enrichment_;
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors
   double domain_size_;

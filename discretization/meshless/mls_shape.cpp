@@ -45,6 +45,14 @@ WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius) {
 
 bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
                          std::span<const double> radii, bool hessians, MlsShape& out) {
+  std::vector<WeightValue> w(nodes.size());
+  for (std::size_t I = 0; I < nodes.size(); ++I) w[I] = quartic_weight(x, nodes[I], radii[I]);
+  const double h = radii.empty() ? 1.0 : *std::max_element(radii.begin(), radii.end());
+  return mls_shape_functions(dim, basis, x, nodes, w, h, hessians, out);
+}
+
+bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
+                         std::span<const WeightValue> w, double h, bool hessians, MlsShape& out) {
   const std::size_t n = nodes.size();
   const int m = mls_basis_size(dim, basis);
   out.value.assign(n, 0.0);
@@ -52,10 +60,8 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
   out.hessian.assign(hessians ? n : 0, Mat3::Zero());
   out.condition = std::numeric_limits<double>::infinity();
   if (n == 0) return false;
-  // The basis is centred at x and scaled by the largest support: A stays O(1).
-  const double h = *std::max_element(radii.begin(), radii.end());
+  // The basis is centred at x and scaled by h, the largest support: A stays O(1).
   std::vector<Column> p(n);
-  std::vector<WeightValue> w(n);
   Square A = Square::Zero(m, m);
   Square dA[3], d2A[3][3];
   for (int k = 0; k < dim; ++k) {
@@ -64,7 +70,6 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
   }
   for (std::size_t I = 0; I < n; ++I) {
     p[I] = basis_at(dim, basis, (nodes[I] - x) / h);
-    w[I] = quartic_weight(x, nodes[I], radii[I]);
     Square ppT = p[I] * p[I].transpose();
     A += w[I].value * ppT;
     for (int k = 0; k < dim; ++k) {

@@ -39,4 +39,9 @@ struct MlsShape {
 bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
                          std::span<const double> radii, bool hessians, MlsShape& out);
 
+/// The same with the nodes' weights at x given (a cut's enriched weights
+/// w_I g_I); `scale` (m) scales the basis, the largest support radius.
+bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
+                         std::span<const WeightValue> weights, double scale, bool hessians, MlsShape& out);
+
 }  // namespace kerf

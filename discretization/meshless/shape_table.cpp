@@ -1,5 +1,6 @@
 #include "discretization/meshless/shape_table.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/check.h"
@@ -8,7 +9,8 @@
 namespace kerf {
 
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
-                       const std::string& what, const std::string& context, const std::string& remedy) {
+                       const std::string& what, const std::string& context, const std::string& remedy,
+                       const WeightEnrichment* enrichment) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
@@ -17,26 +19,42 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
   t.value.assign(t.neighbours.index.size(), 0.0);
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
   t.condition.assign(P, 0.0);
+  if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
   Index failed = -1;
 #pragma omp parallel
   {
     MlsShape shape;
     std::vector<Vec3> x;
-    std::vector<double> r;
+    std::vector<WeightValue> w;
 #pragma omp for schedule(dynamic, 64)
     for (Index p = 0; p < P; ++p) {
       auto near = t.neighbours.of(p);
+      const std::size_t s = t.neighbours.start[p];
       x.clear();
-      r.clear();
-      for (Index I : near) x.push_back(nodes.positions[I]), r.push_back(nodes.support[I]);
-      const bool ok = mls_shape_functions(dim, basis, points[p], x, r, false, shape);
+      w.clear();
+      double scale = 0.0;
+      for (std::size_t k = 0; k < near.size(); ++k) {
+        const Index I = near[k];
+        x.push_back(nodes.positions[I]);
+        scale = std::max(scale, nodes.support[I]);
+        WeightValue wI = quartic_weight(points[p], nodes.positions[I], nodes.support[I]);
+        if (enrichment && enrichment->enriches(I)) {
+          // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
+          const WeightFactor g = enrichment->factor(I, points[p]);
+          wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
+          wI.value *= g.value;
+          wI.hessian *= g.value;
+          t.weight_factor[s + k] = g.value;
+        }
+        w.push_back(wI);
+      }
+      const bool ok = mls_shape_functions(dim, basis, points[p], x, w, scale, false, shape);
       t.condition[p] = shape.condition;
       if (!ok) {
 #pragma omp critical
         if (failed < 0 || p < failed) failed = p;
         continue;
       }
-      const std::size_t s = t.neighbours.start[p];
       for (std::size_t k = 0; k < near.size(); ++k) {
         t.value[s + k] = shape.value[k];
         for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = shape.gradient[k][i];

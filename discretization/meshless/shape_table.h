@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "discretization/enrichment/weight_enrichment.h"
 #include "discretization/meshless/node_set.h"
 #include "geometry/neighbor_search.h"
 
@@ -18,16 +19,19 @@ struct ShapeTable {
   std::vector<double> value;      // per (point, neighbour)
   std::vector<double> gradient;   // per (point, neighbour), dimension entries (1/m)
   std::vector<double> condition;  // per point: condition number of the scaled moment matrix
+  std::vector<double> weight_factor;  // per (point, neighbour): a cut's g_I (empty without cuts)
   Index point_count() const { return neighbours.size(); }
   const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
   const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }
 };
 
-/// Shape functions at `points`. Throws when the moment matrix at a point cannot
-/// be inverted: `context` (where the setting comes from), then the point
+/// Shape functions at `points`, with the cuts' enriched weights w_I g_I when
+/// `enrichment` is given. Throws when the moment matrix at a point cannot be
+/// inverted: `context` (where the setting comes from), then the point
 /// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
-                       const std::string& what, const std::string& context, const std::string& remedy);
+                       const std::string& what, const std::string& context, const std::string& remedy,
+                       const WeightEnrichment* enrichment = nullptr);
 
 /// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);

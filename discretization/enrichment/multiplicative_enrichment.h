@@ -1,0 +1,27 @@
+#pragma once
+// Barbieri's rule for several pieces (paper eq. 18), kept because the paper
+// shows it fails at kinks (Fig. 7): g_I(x) = prod_k (1 + sigma_Ik phi_k(x)) / 2
+// over the pieces k that node I's support reaches, phi_k the piece's own
+// function and sigma_Ik node I's side of it.
+#include "discretization/enrichment/cut_phi.h"
+#include "discretization/enrichment/weight_enrichment.h"
+
+namespace kerf {
+
+class MultiplicativeEnrichment final : public WeightEnrichment {
+ public:
+  MultiplicativeEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
+                           std::span<const double> support);
+
+  bool enriches(Index node) const override { return start_[node + 1] > start_[node]; }
+  WeightFactor factor(Index node, const Vec3& x) const override;
+
+ private:
+  CutSurface cut_;
+  std::vector<CutFrame> frame_;      // per piece
+  std::vector<Index> start_;         // CSR over nodes: the pieces each node reaches
+  std::vector<Index> piece_;
+  std::vector<signed char> side_;    // per (node, piece)
+};
+
+}  // namespace kerf

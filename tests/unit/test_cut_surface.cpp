@@ -1,0 +1,83 @@
+// Cut geometry: pieces and their growth in time, the checks that refuse
+// degenerate cuts (zero-length segment, collapsed triangle, a cut folding over
+// its common line or plane), the common frame, regions and d+, crossings.
+#include <gtest/gtest.h>
+
+#include "core/check.h"
+#include "geometry/cut_surface.h"
+
+namespace kerf {
+namespace {
+
+std::string error_of(int dim, std::vector<Vec3> v) {
+  try {
+    cut_surface(dim, v, std::vector<double>(v.size(), 0.0), "scene.yaml:7: cuts.0");
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(CutSurface, PiecesAppearWithTheirLastVertex) {
+  CutSurface c = cut_surface(2, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0.2, 0), Vec3(3, 0, 0)}, {0, 0, 0.5, 1.0}, "");
+  ASSERT_EQ(c.piece_count(), 3);
+  EXPECT_EQ(c.pieces_at(0.0), 1);
+  EXPECT_EQ(c.pieces_at(0.7), 2);
+  EXPECT_EQ(c.pieces_at(1.0), 3);
+  EXPECT_NEAR(c.pieces[0].normal.y(), 1.0, 1e-15);  // left of the direction of travel
+}
+
+TEST(CutSurface, RefusesDegenerateInputNamingWhereAndWhat) {
+  std::string e = error_of(2, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0)});
+  EXPECT_NE(e.find("scene.yaml:7: cuts.0"), std::string::npos) << e;
+  EXPECT_NE(e.find("vertex 1"), std::string::npos) << e;
+  EXPECT_NE(e.find("zero length"), std::string::npos) << e;
+  e = error_of(3, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 0, 0), Vec3(2, 1, 0)});
+  EXPECT_NE(e.find("collapsed"), std::string::npos) << e;
+  // A polyline that turns back on itself folds over its common line.
+  e = error_of(2, {Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(0.2, 0.1, 0)});
+  EXPECT_NE(e.find("folds over its common line"), std::string::npos) << e;
+  EXPECT_NE(e.find("segment 1"), std::string::npos) << e;
+  // A strip whose last triangle turns back over the others folds over its plane.
+  e = error_of(3, {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(0.5, 0, 0.1), Vec3(0.5, 1, 0.1)});
+  EXPECT_NE(e.find("folds over its common plane"), std::string::npos) << e;
+  // A zigzag within 87 degrees of its mean direction is accepted.
+  EXPECT_EQ(error_of(2, {Vec3(0, 0, 0), Vec3(1, 0.5, 0), Vec3(2, 0, 0), Vec3(3, 0.5, 0)}), "");
+}
+
+TEST(CutSurface, StripTrianglesAreOrientedAlike) {
+  CutSurface c = cut_surface(3, {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(1, 1, 0), Vec3(2, 0, 0)},
+                             std::vector<double>(5, 0.0), "");
+  for (const CutPiece& p : c.pieces) EXPECT_NEAR(p.normal.dot(c.pieces[0].normal), 1.0, 1e-15);
+  const CutFrame f = common_frame(c, 0, c.piece_count());
+  EXPECT_NEAR(std::abs(f.normal.z()), 1.0, 1e-15);
+}
+
+TEST(CutSurface, RegionsAndDistanceFromTheEndsIn2D) {
+  // A kinked polyline: d+ is measured from its two ends along the common line.
+  CutSurface c = cut_surface(2, {Vec3(0, 0, 0), Vec3(1, 0.2, 0), Vec3(2, 0, 0)}, {0, 0, 0}, "");
+  const CutFrame f = common_frame(c, 0, 2);
+  EXPECT_NEAR(f.axis[0].x(), 1.0, 1e-15);  // symmetric kink: the mean angle is 0
+  CutRegion r = cut_region(c, 0, 2, f, Vec3(0.5, 0.5, 0));
+  EXPECT_EQ(r.piece, 0);
+  EXPECT_EQ(r.d_plus, 0.0);
+  EXPECT_GT(r.s, 0.0);
+  r = cut_region(c, 0, 2, f, Vec3(1.5, -0.5, 0));
+  EXPECT_EQ(r.piece, 1);
+  EXPECT_LT(r.s, 0.0);
+  r = cut_region(c, 0, 2, f, Vec3(2.5, 0.1, 0));
+  EXPECT_EQ(r.piece, 1);
+  EXPECT_NEAR(r.d_plus, 0.5, 1e-12);
+}
+
+TEST(CutSurface, CrossingsAndDistances) {
+  CutSurface c = cut_surface(3, {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)}, {0, 0, 0, 0}, "");
+  EXPECT_TRUE(segment_crosses_cut(c, 0, 2, Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1)));
+  EXPECT_FALSE(segment_crosses_cut(c, 0, 2, Vec3(1.5, 0.5, -1), Vec3(1.5, 0.5, 1)));
+  EXPECT_FALSE(segment_crosses_cut(c, 0, 2, Vec3(0.5, 0.5, 0), Vec3(0.5, 0.5, 1)));  // touches at an end
+  EXPECT_NEAR(distance_to_cut(c, 0, 2, Vec3(0.5, 0.5, 0.3)), 0.3, 1e-15);
+  EXPECT_NEAR(distance_to_cut(c, 0, 2, Vec3(2, 0.5, 0)), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace kerf

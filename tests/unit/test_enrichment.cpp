@@ -1,0 +1,204 @@
+// Enrichment of the MLS weights by a cut: phi is +1 and -1 on the two faces,
+// continuous around and ahead of the tips (0 on the extension), its analytic
+// gradient matches finite differences away from the cut (single piece, the
+// Enrichment Grid of a kinked polyline, a 3D strip); an enriched node's weight
+// vanishes across the faces but not around the tips; every rule's weight
+// factor has the gradient of its finite differences; enriched MLS still
+// reproduces linear fields, to round-off, right next to the cut.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "discretization/enrichment/cut_phi.h"
+#include "discretization/enrichment/diffraction_enrichment.h"
+#include "discretization/enrichment/multiplicative_enrichment.h"
+#include "discretization/enrichment/phi_field_enrichment.h"
+#include "discretization/enrichment/visibility_enrichment.h"
+#include "discretization/meshless/mls_shape.h"
+
+namespace kerf {
+namespace {
+
+CutSurface straight_2d() { return cut_surface(2, {Vec3(-0.5, 0, 0), Vec3(0.5, 0, 0)}, {0, 0}, ""); }
+CutSurface kinked_2d() {
+  return cut_surface(2, {Vec3(-0.6, 0, 0), Vec3(-0.1, 0.15, 0), Vec3(0.2, -0.05, 0), Vec3(0.6, 0.1, 0)},
+                     {0, 0, 0, 0}, "");
+}
+CutSurface strip_3d() {
+  // A blade edge from y = -0.3 to 0.3 swept along x, tilting a little.
+  return cut_surface(3,
+                     {Vec3(-0.5, -0.3, 0), Vec3(-0.5, 0.3, 0.02), Vec3(0, -0.3, 0.05), Vec3(0, 0.3, 0.04),
+                      Vec3(0.5, -0.3, 0.0), Vec3(0.5, 0.3, 0.03)},
+                     std::vector<double>(6, 0.0), "");
+}
+
+PhiValue whole_phi(const CutSurface& c, const Vec3& x) {
+  return grid_phi(c, 0, c.piece_count(), common_frame(c, 0, c.piece_count()), x);
+}
+
+TEST(CutPhi, PlusAndMinusOneOnTheFacesZeroAheadOfTheTips) {
+  for (const CutSurface& c : {straight_2d(), kinked_2d()}) {
+    for (double t : {-0.4, -0.1, 0.0, 0.15, 0.4}) {
+      const CutFrame f = common_frame(c, 0, c.piece_count());
+      const CutRegion r = cut_region(c, 0, c.piece_count(), f, Vec3(t, 0, 0));
+      const Vec3 on = Vec3(t, 0, 0) - r.s * c.pieces[r.piece].normal;  // the point of the cut below x
+      EXPECT_DOUBLE_EQ(whole_phi(c, on + 1e-7 * c.pieces[r.piece].normal).value, 1.0);
+      EXPECT_DOUBLE_EQ(whole_phi(c, on - 1e-7 * c.pieces[r.piece].normal).value, -1.0);
+    }
+    // On the cut exactly (its vertices, tips included): the + side.
+    for (const Vec3& v : c.vertices) EXPECT_DOUBLE_EQ(whole_phi(c, v).value, 1.0);
+  }
+  EXPECT_DOUBLE_EQ(whole_phi(straight_2d(), Vec3(0.2, 0, 0)).value, 1.0);
+  // Ahead of the tip of the straight cut, on its extension, phi = 0; around
+  // the tip it moves smoothly from +1 to -1.
+  const CutSurface c = straight_2d();
+  EXPECT_DOUBLE_EQ(whole_phi(c, Vec3(0.7, 0, 0)).value, 0.0);
+  double previous = 1.0;
+  for (int k = 1; k < 64; ++k) {
+    const double angle = std::numbers::pi * k / 64.0;  // from above the tip round to below it
+    const Vec3 x(0.5 + 0.01 * std::sin(angle), 0.01 * std::cos(angle), 0);
+    const double phi = whole_phi(c, x).value;
+    EXPECT_LT(phi, previous);
+    EXPECT_LT(previous - phi, 0.06);  // no jump around the tip
+    previous = phi;
+  }
+  // 3D: the two faces of the strip (its normal points down: blade along +y, swept along +x).
+  const CutSurface s = strip_3d();
+  ASSERT_LT(s.pieces[0].normal.z(), 0.0);
+  EXPECT_DOUBLE_EQ(whole_phi(s, Vec3(0.1, 0.1, -0.2)).value, 1.0);
+  EXPECT_DOUBLE_EQ(whole_phi(s, Vec3(0.1, 0.1, 0.2)).value, -1.0);
+  EXPECT_NEAR(whole_phi(s, Vec3(0.1, 0.6, 0.035)).value, 0.0, 0.1);  // beyond the blade's edge, about level
+}
+
+TEST(CutPhi, AnalyticGradientMatchesFiniteDifferencesAwayFromTheCut) {
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double h = 1e-6;
+  int checked = 0;
+  for (const CutSurface& c : {straight_2d(), kinked_2d(), strip_3d()}) {
+    const int dim = c.dimension;
+    for (int trial = 0; trial < 200; ++trial) {
+      Vec3 x(u(random), u(random), dim == 3 ? u(random) : 0.0);
+      if (distance_to_cut(c, 0, c.piece_count(), x) < 0.05) continue;
+      const PhiValue p = whole_phi(c, x);
+      Vec3 fd = Vec3::Zero();
+      bool smooth = true;
+      for (int i = 0; i < dim; ++i) {
+        Vec3 e = Vec3::Zero();
+        e[i] = h;
+        const double plus = whole_phi(c, x + e).value, minus = whole_phi(c, x - e).value;
+        // Region boundaries beyond the tips (3D) may jump: skip points on them.
+        smooth &= std::abs(plus - minus) < 1e-3;
+        fd[i] = (plus - minus) / (2 * h);
+      }
+      if (!smooth) continue;
+      EXPECT_LT((fd - p.gradient).norm(), 1e-6 * (1.0 + p.gradient.norm())) << "at " << x.transpose();
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 300);
+}
+
+/// The weight factors of every rule: g in [0, 1], its gradient by finite differences.
+TEST(WeightEnrichment, FactorsHaveTheGradientsOfTheirFiniteDifferences) {
+  const CutSurface c = kinked_2d();
+  const std::vector<Vec3> nodes = {Vec3(-0.2, 0.2, 0), Vec3(0.3, -0.2, 0), Vec3(0.55, 0.3, 0), Vec3(0.0, -0.1, 0)};
+  const std::vector<double> support(nodes.size(), 0.6);
+  const Index n = c.piece_count();
+  std::vector<std::unique_ptr<WeightEnrichment>> rules;
+  rules.push_back(std::make_unique<PhiFieldEnrichment>(c, n, PhiFieldEnrichment::Field::grid, nodes, support));
+  rules.push_back(std::make_unique<PhiFieldEnrichment>(c, n, PhiFieldEnrichment::Field::nearest_piece, nodes, support));
+  rules.push_back(std::make_unique<MultiplicativeEnrichment>(c, n, nodes, support));
+  rules.push_back(std::make_unique<DiffractionEnrichment>(c, n, nodes, support));
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-0.8, 0.8);
+  const double h = 1e-6;
+  for (std::size_t r = 0; r < rules.size(); ++r)
+    for (Index I = 0; I < static_cast<Index>(nodes.size()); ++I) {
+      ASSERT_TRUE(rules[r]->enriches(I));
+      for (int trial = 0; trial < 50; ++trial) {
+        const Vec3 x(u(random), u(random), 0);
+        if (distance_to_cut(c, 0, n, x) < 0.02 || (x - nodes[I]).norm() > 0.58) continue;
+        const WeightFactor g = rules[r]->factor(I, x);
+        EXPECT_GE(g.value, 0.0);
+        EXPECT_LE(g.value, 1.0 + 1e-12);
+        Vec3 fd = Vec3::Zero();
+        bool smooth = true;
+        for (int i = 0; i < 2; ++i) {
+          Vec3 e = Vec3::Zero();
+          e[i] = h;
+          const double plus = rules[r]->factor(I, x + e).value, minus = rules[r]->factor(I, x - e).value;
+          smooth &= std::abs(plus - minus) < 1e-3;  // diffraction switches on across rays through the tips
+          fd[i] = (plus - minus) / (2 * h);
+        }
+        if (!smooth) continue;
+        EXPECT_LT((fd - g.gradient).norm(), 1e-5 * (1.0 + g.gradient.norm())) << "rule " << r << " node " << I;
+      }
+    }
+}
+
+TEST(WeightEnrichment, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
+  const CutSurface c = straight_2d();
+  const std::vector<Vec3> nodes = {Vec3(0.0, 0.05, 0), Vec3(0.45, 0.05, 0), Vec3(0.0, 2.0, 0)};
+  const std::vector<double> support = {0.3, 0.3, 0.3};
+  PhiFieldEnrichment grid(c, 1, PhiFieldEnrichment::Field::grid, nodes, support);
+  VisibilityEnrichment visibility(c, 1, nodes, support);
+  EXPECT_FALSE(grid.enriches(2));  // its support does not reach the cut
+  for (const WeightEnrichment* rule : std::initializer_list<const WeightEnrichment*>{&grid, &visibility}) {
+    EXPECT_EQ(rule->factor(0, Vec3(0.0, -0.05, 0)).value, 0.0);  // straight across the face
+    EXPECT_EQ(rule->factor(0, Vec3(0.1, 0.1, 0)).value, 1.0);    // same side
+  }
+  // Around the tip the grid's weight fades smoothly: half ahead of the tip,
+  // and still seen a little below it.
+  EXPECT_NEAR(grid.factor(1, Vec3(0.6, 0.0, 0)).value, 0.5, 1e-12);
+  const double below = grid.factor(1, Vec3(0.55, -0.05, 0)).value;
+  EXPECT_GT(below, 0.1);
+  EXPECT_LT(below, 0.5);
+}
+
+TEST(WeightEnrichment, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
+  const CutSurface c = kinked_2d();
+  std::vector<Vec3> nodes;
+  std::vector<double> support;
+  const double h = 0.05;
+  for (int i = -20; i <= 20; ++i)
+    for (int j = -10; j <= 10; ++j) {
+      nodes.emplace_back(i * h + 0.013, j * h + 0.021, 0);
+      support.push_back(2.6 * h);
+    }
+  PhiFieldEnrichment grid(c, c.piece_count(), PhiFieldEnrichment::Field::grid, nodes, support);
+  auto field = [](const Vec3& x) { return 0.3 + 2.0 * x.x() - 1.5 * x.y(); };
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-0.7, 0.7);
+  int checked = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const Vec3 x(u(random), 0.5 * u(random), 0);
+    std::vector<Vec3> near;
+    std::vector<WeightValue> w;
+    for (std::size_t I = 0; I < nodes.size(); ++I) {
+      WeightValue wI = quartic_weight(x, nodes[I], support[I]);
+      if (wI.value <= 0.0) continue;
+      const WeightFactor g = grid.factor(static_cast<Index>(I), x);
+      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
+      wI.value *= g.value;
+      near.push_back(nodes[I]);
+      w.push_back(wI);
+    }
+    MlsShape shape;
+    if (!mls_shape_functions(2, MlsBasis::linear, x, near, w, 2.6 * h, false, shape)) continue;
+    double value = 0.0;
+    Vec3 gradient = Vec3::Zero();
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      value += shape.value[k] * field(near[k]);
+      gradient += shape.gradient[k] * field(near[k]);
+    }
+    EXPECT_NEAR(value, field(x), 1e-10);
+    EXPECT_NEAR(gradient.x(), 2.0, 1e-8);
+    EXPECT_NEAR(gradient.y(), -1.5, 1e-8);
+    ++checked;
+  }
+  EXPECT_GT(checked, 350);
+}
+
+}  // namespace
+}  // namespace kerf
