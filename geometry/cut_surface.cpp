@@ -83,8 +83,8 @@ CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> 
              times.size());
   if (dim == 2)
     for (Vec3& v : vertices) v.z() = 0.0;
-  double extent = 0.0;
-  for (const Vec3& v : vertices) extent = std::max(extent, (v - vertices.front()).norm());
+  for (const Vec3& v : vertices) cut.extent = std::max(cut.extent, (v - vertices.front()).norm());
+  const double extent = cut.extent;
   for (Index k = 0; k + corners <= n; ++k) {
     CutPiece p = make_piece(dim, vertices, k);
     if (dim == 2)
@@ -213,9 +213,7 @@ bool segment_crosses_cut(const CutSurface& cut, Index first, Index last, const V
                                        Kernel::Triangle_3(point3(c[0]), point3(c[1]), point3(c[2])));
   }
   if (!crosses) return false;
-  double extent = 0.0;
-  for (const Vec3& v : cut.vertices) extent = std::max(extent, (v - cut.vertices.front()).norm());
-  const double touch = 1e-12 * extent;
+  const double touch = 1e-12 * cut.extent;
   return distance_to_cut(cut, first, last, a) > touch && distance_to_cut(cut, first, last, b) > touch;
 }
 

@@ -31,6 +31,7 @@ struct CutSurface {
   std::vector<CutPiece> pieces;
   std::vector<double> appears;  // s, one per piece
   std::string where;            // the scene location, for messages
+  double extent = 0.0;          // m: largest distance of a vertex from the first
 
   Index piece_count() const { return static_cast<Index>(pieces.size()); }
   /// Pieces present at time t: they appear in order, so a prefix.

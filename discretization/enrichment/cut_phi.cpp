@@ -19,8 +19,4 @@ PhiValue grid_phi(const CutSurface& cut, Index first, Index last, const CutFrame
   return phi_of(cut_region(cut, first, last, frame, x));
 }
 
-PhiValue piece_phi(const CutSurface& cut, Index k, const Vec3& x) {
-  return grid_phi(cut, k, k + 1, common_frame(cut, k, k + 1), x);
-}
-
 }  // namespace kerf

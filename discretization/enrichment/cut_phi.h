@@ -24,7 +24,4 @@ PhiValue phi_of(const CutRegion& region);
 /// the two ends, eq. 23; 3D: d2+ to the projected strip, eq. 25).
 PhiValue grid_phi(const CutSurface& cut, Index first, Index last, const CutFrame& frame, const Vec3& x);
 
-/// Barbieri's function of piece k alone, in its own frame.
-PhiValue piece_phi(const CutSurface& cut, Index k, const Vec3& x);
-
 }  // namespace kerf

@@ -23,9 +23,7 @@ WeightFactor MultiplicativeEnrichment::factor(Index node, const Vec3& x) const {
   for (Index j = start_[node]; j < start_[node + 1]; ++j) {
     const Index k = piece_[j];
     const PhiValue p = grid_phi(cut_, k, k + 1, frame_[k], x);
-    const double h = 0.5 * (1.0 + side_[j] * p.value);
-    g.gradient = g.gradient * h + g.value * 0.5 * side_[j] * p.gradient;  // product rule
-    g.value *= h;
+    g = g * WeightFactor{0.5 * (1.0 + side_[j] * p.value), 0.5 * side_[j] * p.gradient};
   }
   return g;
 }

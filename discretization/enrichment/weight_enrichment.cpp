@@ -20,11 +20,7 @@ class CombinedEnrichment final : public WeightEnrichment {
   }
   WeightFactor factor(Index node, const Vec3& x) const override {
     WeightFactor g;
-    for (const auto& p : parts_) {
-      const WeightFactor h = p->factor(node, x);
-      g.gradient = g.gradient * h.value + g.value * h.gradient;
-      g.value *= h.value;
-    }
+    for (const auto& p : parts_) g = g * p->factor(node, x);
     return g;
   }
 

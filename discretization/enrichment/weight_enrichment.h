@@ -19,6 +19,11 @@ struct WeightFactor {
   Vec3 gradient = Vec3::Zero();  // 1/m
 };
 
+/// (a b) and (a b)' = a' b + a b': how factors combine.
+inline WeightFactor operator*(const WeightFactor& a, const WeightFactor& b) {
+  return {a.value * b.value, a.gradient * b.value + a.value * b.gradient};
+}
+
 class WeightEnrichment {
  public:
   virtual ~WeightEnrichment() = default;
