@@ -14,6 +14,8 @@ struct RunReport {
   PhaseTimes phases;                 // setup, assembly, factorize, solve, cut_update, output
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
   std::vector<double> step_seconds;  // wall time of each time step (or load step)
+  std::vector<double> cut_update_seconds;   // per growth of a cut: the body's update (enrichment, shapes)
+  std::vector<double> cut_refresh_seconds;  // per growth: the stepper re-reading mass, forces, factors
   std::map<std::string, double> counters;  // e.g. factorizations, pcg_iterations
 
   void add_stage(const std::string& stage) {

@@ -2,6 +2,7 @@
 // What a solver needs of a discretized body, whatever the method (fem, efg,
 // nodal). Degrees of freedom are node-major: dof = dofs_per_node * node + component.
 // Units: displacement m, force N, mass kg, time s.
+#include <array>
 #include <functional>
 #include <optional>
 #include <span>
@@ -51,6 +52,22 @@ struct BodySnapshot {
   std::vector<OutputField> cell_fields;
 };
 
+/// A scalar field on a lattice (an Enrichment Grid's phi), for a .vti file.
+struct LatticeSnapshot {
+  std::string name;
+  Vec3 origin = Vec3::Zero();  // m
+  std::array<Vec3, 3> axes{Vec3::UnitX(), Vec3::UnitY(), Vec3::UnitZ()};  // unit, world frame
+  std::array<Index, 3> count{1, 1, 1};
+  double spacing = 1.0;        // m
+  std::vector<double> values;  // axis 0 fastest
+};
+
+/// What a growing cut changed in a body.
+struct CutUpdate {
+  Index nodes = 0;   // nodes whose enriched weight changed
+  Index points = 0;  // integration points whose shape functions were recomputed
+};
+
 class DiscreteBody {
  public:
   virtual ~DiscreteBody() = default;
@@ -96,6 +113,25 @@ class DiscreteBody {
   /// Mean number of other nodes a node is coupled to (FEM: through cells) or
   /// whose support covers it (meshless).
   virtual double mean_neighbors() const = 0;
+
+  /// Brings the body's cuts to time t: where a new piece appeared, the shape
+  /// functions it affects are rebuilt (the dofs stay the same, so the state
+  /// carries over). nullopt when nothing changed.
+  virtual std::optional<CutUpdate> advance_cuts(double t) {
+    (void)t;
+    return std::nullopt;
+  }
+
+  /// The cuts as they stand, for ParaView: their pieces (lines in 2D,
+  /// triangles in 3D) in the reference configuration, with the opening
+  /// u(x + delta n) - u(x - delta n) across the cut at each vertex. Empty
+  /// without cuts.
+  virtual void cut_snapshot(const Vector& u, BodySnapshot& out) const {
+    (void)u;
+    out = BodySnapshot{};
+  }
+  /// The Enrichment Grids' phi, one per grid-enriched cut present.
+  virtual std::vector<LatticeSnapshot> enrichment_lattices() const { return {}; }
 
   /// The total force (N) that constraints imposed weakly (EFG penalty or
   /// Nitsche) on the boundary faces inside `selection` exert on the body at

@@ -54,4 +54,17 @@ NeighborLists covering_supports(const PointIndex& nodes, std::span<const double>
   return lists;
 }
 
+NeighborLists transpose_slots(const NeighborLists& lists, Index count) {
+  // Counting sort: slots of a target in list order.
+  NeighborLists t;
+  t.start.assign(count + 1, 0);
+  for (Index K : lists.index) ++t.start[K + 1];
+  for (Index K = 0; K < count; ++K) t.start[K + 1] += t.start[K];
+  const Index slots = static_cast<Index>(lists.index.size());
+  t.index.resize(slots);
+  std::vector<Index> next(t.start.begin(), t.start.end() - 1);
+  for (Index s = 0; s < slots; ++s) t.index[next[lists.index[s]]++] = s;
+  return t;
+}
+
 }  // namespace kerf

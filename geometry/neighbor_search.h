@@ -19,6 +19,10 @@ struct NeighborLists {
   }
 };
 
+/// The transpose of lists over `count` targets: for each target, the slots
+/// (positions in lists.index) that hold it, in increasing order.
+NeighborLists transpose_slots(const NeighborLists& lists, Index count);
+
 /// A k-d tree over points (m; 2D points have z = 0).
 class PointIndex {
  public:

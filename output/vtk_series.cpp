@@ -4,11 +4,13 @@
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
 #include <vtkIdTypeArray.h>
+#include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkPoints.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkXMLImageDataWriter.h>
 #include <vtkXMLUnstructuredGridWriter.h>
 
 #include <cstdio>
@@ -72,20 +74,62 @@ void write_vtu(const BodySnapshot& s, const std::string& path) {
   commit_file(temporary, path);
 }
 
+void write_vti(const LatticeSnapshot& l, const std::string& path) {
+  vtkNew<vtkImageData> image;
+  image->SetDimensions(static_cast<int>(l.count[0]), static_cast<int>(l.count[1]), static_cast<int>(l.count[2]));
+  image->SetSpacing(l.spacing, l.spacing, l.spacing);
+  image->SetOrigin(l.origin.data());
+  double direction[9];
+  for (int r = 0; r < 3; ++r)
+    for (int c = 0; c < 3; ++c) direction[3 * r + c] = l.axes[c][r];  // the axes are its columns
+  image->SetDirectionMatrix(direction);
+  const std::size_t points = static_cast<std::size_t>(l.count[0]) * l.count[1] * l.count[2];
+  image->GetPointData()->SetScalars(make_array(OutputField{"phi", 1, l.values}, points));
+  std::string temporary = temporary_path(path);
+  vtkNew<vtkXMLImageDataWriter> writer;
+  writer->SetFileName(temporary.c_str());
+  writer->SetInputData(image);
+  writer->SetDataModeToAppended();
+  writer->EncodeAppendedDataOff();
+  KERF_CHECK(writer->Write() == 1, "VTK could not write ", temporary);
+  commit_file(temporary, path);
+}
+
 VtkSeries::VtkSeries(std::string directory, std::string name)
     : directory_(std::move(directory)), name_(std::move(name)), pvd_path_(directory_ + "/" + name_ + ".pvd") {}
 
-std::string VtkSeries::write(const BodySnapshot& snapshot, double time) {
-  char file[512];
-  std::snprintf(file, sizeof file, "%s_%04zu.vtu", name_.c_str(), entries_.size());
-  std::string path = directory_ + "/" + file;
+std::string VtkSeries::write(const BodySnapshot& snapshot, double time, const BodySnapshot* cut,
+                             const std::vector<LatticeSnapshot>* lattices) {
+  auto file_name = [&](const std::string& part, const char* extension) {
+    char file[512];
+    std::snprintf(file, sizeof file, "%s%s_%04zu.%s", name_.c_str(), part.c_str(), entries_.size(), extension);
+    return std::string(file);
+  };
+  Entry entry{time, {file_name("", "vtu")}};
+  const std::string path = directory_ + "/" + entry.parts[0];
   write_vtu(snapshot, path);
-  entries_.emplace_back(time, file);
+  entry.parts.push_back("");
+  if (cut && !cut->cell_types.empty()) {
+    entry.parts[1] = file_name("_cut", "vtu");
+    write_vtu(*cut, directory_ + "/" + entry.parts[1]);
+  }
+  if (lattices) {
+    lattice_files_.resize(std::max(lattice_files_.size(), lattices->size()));
+    for (std::size_t g = 0; g < lattices->size(); ++g) {
+      lattice_files_[g] = file_name("_" + (*lattices)[g].name, "vti");
+      write_vti((*lattices)[g], directory_ + "/" + lattice_files_[g]);
+    }
+  }
+  entry.parts.insert(entry.parts.end(), lattice_files_.begin(), lattice_files_.end());
+  entries_.push_back(std::move(entry));
   std::ostringstream pvd;
   pvd.precision(17);
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
-  for (const auto& [t, name] : entries_)
-    pvd << "    <DataSet timestep=\"" << t << "\" part=\"0\" file=\"" << name << "\"/>\n";
+  for (const Entry& e : entries_)
+    for (std::size_t part = 0; part < e.parts.size(); ++part)
+      if (!e.parts[part].empty())
+        pvd << "    <DataSet timestep=\"" << e.time << "\" part=\"" << part << "\" file=\"" << e.parts[part]
+            << "\"/>\n";
   pvd << "  </Collection>\n</VTKFile>\n";
   write_file_atomically(pvd_path_, pvd.str());
   return path;

@@ -82,6 +82,20 @@ class CentralDifferenceStepper final : public Stepper {
                " s): the displacement became NaN or infinite: the explicit solution diverged");
   }
 
+  void discretization_changed(SolverState& s) override {
+    // The critical step is not estimated again (a Lanczos run costs an
+    // assembly): the run keeps dt, and a growing instability stops it.
+    mass_ = body_.lumped_mass();
+    inverse_mass_ = mass_.cwiseInverse();
+    if (beta_ != 0.0) {
+      damped_u_ = s.u + beta_ * s.v;
+      body_.internal_force(damped_u_, f_int_);
+    } else {
+      body_.internal_force(s.u, f_int_);
+    }
+    acceleration(s.v, s.a);
+  }
+
   double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(mass_.cwiseProduct(s.v)); }
   Vector reaction(const SolverState& s) override {
     Vector r;

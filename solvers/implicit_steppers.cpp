@@ -49,6 +49,7 @@ class StaticStepper final : public Stepper {
     ++s.step;
   }
 
+  void discretization_changed(SolverState&) override { system_.discretization_changed(); }
   double kinetic_energy(const SolverState&) const override { return 0.0; }
   Vector reaction(const SolverState& s) override {
     Vector r;
@@ -120,6 +121,10 @@ class DynamicImplicitStepper : public Stepper {
     ++s.step;
   }
 
+  void discretization_changed(SolverState& s) override {
+    system_.discretization_changed();
+    if (uses_acceleration()) s.a = initial_acceleration(s);
+  }
   double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(system_.mass_times(s.v)); }
   Vector reaction(const SolverState& s) override {
     Vector r;
@@ -145,12 +150,13 @@ class DynamicImplicitStepper : public Stepper {
   /// Whether a(u) depends on the previous acceleration (then a0 is solved for).
   virtual bool uses_acceleration() const = 0;
 
-  /// M a0 = f_ext - f_int(u0) on the free dofs (v0 = 0; zero at constrained dofs).
+  /// M a = f_ext(t) - f_int(u) - C v on the free dofs (zero at constrained dofs).
   Vector initial_acceleration(const SolverState& s) {
     Vector f_int;
     system_.internal_force(s.u, f_int, true);
-    body_.external_force(0.0, f_ext_);
-    Vector rhs = f_ext_ - f_int;
+    body_.external_force(s.t, f_ext_);
+    Vector rhs = f_ext_ - f_int - alpha_ * system_.mass_times(s.v);
+    if (beta_ != 0.0) rhs -= beta_ * system_.stiffness_times(s.v);
     system_.update_matrix(1.0, 0.0, std::string(name()) + " initial acceleration");
     Vector a = Vector::Zero(body_.dof_count());
     system_.free().add_to_full(system_.solve(system_.free().restrict_vector(rhs), "initial acceleration"), a);

@@ -47,15 +47,29 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   if (needs_mass) {
     has_mass_ = true;
     lumped_ = options.mass == MassKind::lumped;
-    report_.add_stage("mass");
-    if (lumped_) {
-      lumped_mass_ = body_.lumped_mass();
-    } else {
-      SparseMatrix mass = stiffness_;
-      body_.consistent_mass(add_into(mass));
-      mass_values_.assign(mass.valuePtr(), mass.valuePtr() + mass.nonZeros());
-    }
+    read_mass();
   }
+}
+
+void ImplicitSystem::read_mass() {
+  report_.add_stage("mass");
+  if (lumped_) {
+    lumped_mass_ = body_.lumped_mass();
+    return;
+  }
+  SparseMatrix mass = stiffness_;
+  std::fill(mass.valuePtr(), mass.valuePtr() + mass.nonZeros(), 0.0);
+  body_.consistent_mass(add_into(mass));
+  mass_values_.assign(mass.valuePtr(), mass.valuePtr() + mass.nonZeros());
+}
+
+void ImplicitSystem::discretization_changed() {
+  // Same dofs and pattern: K is assembled again (a linear body's too) and A re-formed and refactorized.
+  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
+  stiffness_assembled_ = false;
+  stiffness_changed_ = true;
+  last_mass_coefficient_ = last_stiffness_coefficient_ = -1.0;
+  if (has_mass_) read_mass();
 }
 
 void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangent) {

@@ -33,6 +33,8 @@ class ImplicitSystem {
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).
   void update_matrix(double mass_coefficient, double stiffness_coefficient, const std::string& where);
+  /// The body's shape functions changed (a cut grew): K and M are read anew.
+  void discretization_changed();
   /// x_f = A_ff^-1 b_f (to solve.linear_tolerance when solved iteratively).
   Vector solve(const Vector& rhs_free, const std::string& where);
 
@@ -57,6 +59,7 @@ class ImplicitSystem {
   Vector previous_solution_;          // warm start of the next preconditioned CG
   std::unique_ptr<LinearSolver> solver_;
 
+  void read_mass();
   void factorize_now(const std::string& where);
   /// Conjugate gradients on A_ff preconditioned by the stale factor; false if
   /// it needs more than the allowed iterations.

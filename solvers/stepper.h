@@ -26,6 +26,11 @@ class Stepper {
   /// The external force the scheme applies at this state (N): f_ext(t), or in a
   /// static run f_ext scaled by the load factor.
   virtual void applied_load(const SolverState& state, Vector& f) const = 0;
+  /// The body's discretization changed under the state (a cut grew; same
+  /// dofs): re-reads what the scheme keeps of it (mass, stiffness, factors)
+  /// and makes the state consistent again (the acceleration of explicit and
+  /// Newmark schemes). u and v carry over unchanged.
+  virtual void discretization_changed(SolverState& state) = 0;
   /// Linear solves Newton made in the last step (0 for explicit).
   virtual int last_iterations() const { return 0; }
   /// The time step the run uses (s); static: 1 / load_steps.

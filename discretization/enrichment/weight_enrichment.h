@@ -3,16 +3,20 @@
 // w_I(x) g_I(x), with g_I in [0, 1] vanishing where x is hidden from node I by
 // a cut. Only nodes whose support reaches a cut are enriched (g = 1 for the
 // others). One implementation per rule: the Enrichment Grid, Barbieri's
-// single-piece and multiplicative rules, visibility and diffraction.
+// single-piece and multiplicative rules, visibility and diffraction; and
+// CutEnrichment, all of a scene's cuts as they grow.
 #include <memory>
 #include <span>
 #include <vector>
 
 #include "core/types.h"
 #include "geometry/cut_surface.h"
+#include "geometry/neighbor_search.h"
 #include "problem/scene.h"
 
 namespace kerf {
+
+class EnrichmentGrid;
 
 struct WeightFactor {
   double value = 1.0;
@@ -37,12 +41,49 @@ class WeightEnrichment {
 std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
                                 std::span<const double> support);
 
-/// The enrichment of every cut present at time t (their factors multiply:
-/// separate cuts are separate surfaces); null when no cut is present yet.
-/// `cuts` and `surfaces` are parallel; nodes and support radii in metres.
-std::unique_ptr<WeightEnrichment> make_weight_enrichment(std::span<const Cut> cuts,
-                                                         std::span<const CutSurface> surfaces,
-                                                         std::span<const Vec3> nodes,
-                                                         std::span<const double> support, double time);
+/// Every cut of a scene at the current time; their factors multiply
+/// (separate cuts are separate surfaces). A piece joins its cut at the time
+/// of its last vertex; advance_to() brings the cuts to a later time and tells
+/// which nodes' factors changed. The grid rule updates incrementally; the
+/// other rules (baselines) are rebuilt and report the nodes the new pieces reach.
+class CutEnrichment final : public WeightEnrichment {
+ public:
+  /// `cuts` and `surfaces` are parallel; nodes and support radii in metres;
+  /// `index` is a k-d tree over the nodes and must outlive this object.
+  CutEnrichment(std::span<const Cut> cuts, std::span<const CutSurface> surfaces, std::span<const Vec3> nodes,
+                std::span<const double> support, const PointIndex& index, double time);
+  ~CutEnrichment() override;
+
+  /// Is any piece of any cut present?
+  bool present() const;
+  bool enriches(Index node) const override;
+  WeightFactor factor(Index node, const Vec3& x) const override;
+
+  /// Brings the cuts to time t (never earlier than before); returns the nodes
+  /// whose g_I changed, sorted and unique (empty when no piece appeared).
+  std::vector<Index> advance_to(double t);
+
+  /// The Enrichment Grid of cut c (null for other rules or before its first piece).
+  const EnrichmentGrid* grid(Index cut) const;
+  /// Pieces of cut c present now.
+  Index pieces(Index cut) const { return parts_[cut].pieces; }
+
+ private:
+  struct Part {
+    Cut cut;
+    CutSurface surface;
+    Index pieces = 0;
+    std::unique_ptr<WeightEnrichment> rule;
+  };
+  /// The nodes whose support reaches pieces [first, last) of a surface, sorted.
+  std::vector<Index> reached_by(const CutSurface& surface, Index first, Index last) const;
+  std::unique_ptr<WeightEnrichment> make_rule(const Part& part, std::span<const Index> reached) const;
+
+  std::vector<Part> parts_;
+  std::vector<Vec3> nodes_;
+  std::vector<double> support_;
+  double largest_support_ = 0.0;
+  const PointIndex& index_;
+};
 
 }  // namespace kerf

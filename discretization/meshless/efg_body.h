@@ -51,6 +51,8 @@ class EfgBody final : public DiscreteBody {
     return domain_.interpolation_at(x);
   }
   void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
+  void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
+  std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
   Vec3 weak_reaction(const Vector& u, const Selection& selection) const override;
 
   const MeshlessDomain& domain() const { return domain_; }

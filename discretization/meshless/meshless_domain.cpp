@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "discretization/enrichment/enrichment_grid.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/meshless/mls_shape.h"
 #include "geometry/neighbor_search.h"
@@ -43,7 +44,18 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
   }
   index_ = std::make_unique<PointIndex>(nodes_.positions);
   for (const Cut& c : scene.cuts) cuts_.push_back(cut_surface(dimension(), c.vertices, c.times, c.where.describe()));
-  enrichment_ = make_weight_enrichment(scene.cuts, cuts_, nodes_.positions, nodes_.support, 0.0);
+  if (!scene.cuts.empty())
+    enrichment_ = std::make_unique<CutEnrichment>(scene.cuts, cuts_, nodes_.positions, nodes_.support, *index_, 0.0);
+  const bool growing = std::any_of(cuts_.begin(), cuts_.end(), [](const CutSurface& c) { return c.appears.back() > 0.0; });
+  if (growing && background_) {
+    std::vector<Vec3> points;
+    for (const BoundaryCondition& bc : scene.boundary)
+      if (!bc.is_dirichlet()) {
+        BoundaryPoints b = boundary_points(facets_in(bc.select, false), 3);
+        points.insert(points.end(), b.position.begin(), b.position.end());
+      }
+    load_points_ = std::make_unique<PointIndex>(std::move(points));
+  }
   at_nodes_ = shapes_at(nodes_.positions, "the node");
 }
 
@@ -56,11 +68,42 @@ const Mesh& MeshlessDomain::background() const {
 }
 
 ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
-  return shape_table(nodes_, *index_, basis_, points, what, error_context_,
-                     enrichment_ ? "expected a larger support, a linear basis, or more nodes there (a cut hides "
-                                   "the nodes on its other side)"
-                                 : "expected a larger support, a linear basis, or more nodes there",
-                     enrichment_.get());
+  return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment());
+}
+
+std::string MeshlessDomain::mls_remedy() const {
+  return enrichment_ ? "expected a larger support, a linear basis, or more nodes there (a cut hides the nodes on "
+                       "its other side)"
+                     : "expected a larger support, a linear basis, or more nodes there";
+}
+
+std::vector<Index> MeshlessDomain::advance_cuts(double t, std::vector<Index>* rows) {
+  if (!enrichment_) return {};
+  std::vector<Index> changed = enrichment_->advance_to(t);
+  if (changed.empty()) return changed;
+  // The rows a changed node appears in, from the transposed neighbour lists.
+  const auto& start = at_nodes_.neighbours.start;
+  if (covered_.size() == 0) covered_ = transpose_slots(at_nodes_.neighbours, nodes_.size());
+  std::vector<char> flag(nodes_.size(), 0);
+  for (Index I : changed)
+    for (Index slot : covered_.of(I)) flag[std::upper_bound(start.begin(), start.end(), slot) - start.begin() - 1] = 1;
+  std::vector<Index> touched;
+  for (Index p = 0; p < nodes_.size(); ++p)
+    if (flag[p]) touched.push_back(p);
+  refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node", error_context_,
+                     mls_remedy());
+  if (rows) *rows = std::move(touched);
+  return changed;
+}
+
+bool MeshlessDomain::boundary_loads_touch(std::span<const Index> nodes) const {
+  if (!load_points_) return false;
+  std::vector<Index> near;
+  for (Index I : nodes) {
+    load_points_->within(nodes_.positions[I], nodes_.support[I], near);
+    if (!near.empty()) return true;
+  }
+  return false;
 }
 
 double MeshlessDomain::mean_neighbors() const {
@@ -192,6 +235,73 @@ void MeshlessDomain::snapshot(const Vector& u, const MaterialLaw& law, BodySnaps
   }
   for (OutputField* f : {&displacement, &stress, &mises, &radius, &volume, &condition})
     out.point_fields.push_back(std::move(*f));
+}
+
+void MeshlessDomain::cut_snapshot(const Vector& u, BodySnapshot& out) const {
+  out = BodySnapshot{};
+  if (!enrichment_) return;
+  const int dim = dimension();
+  const int corners = dim;  // segment ends, triangle corners
+  OutputField opening{"opening", 3, {}};
+  OutputField appears{"appears", 1, {}}, which{"cut", 1, {}};
+  // Just off the faces, on either side: the displacement jump across the cut.
+  const double delta = 1e-6 * domain_size_;
+  for (std::size_t c = 0; c < cuts_.size(); ++c) {
+    const CutSurface& cut = cuts_[c];
+    const Index pieces = enrichment_->pieces(static_cast<Index>(c));
+    if (pieces == 0) continue;
+    const Index first_point = static_cast<Index>(out.points.size());
+    const Index vertices = pieces + corners - 1;
+    for (Index v = 0; v < vertices; ++v) {
+      Vec3 normal = Vec3::Zero();  // mean of the pieces that share the vertex
+      for (Index k = std::max<Index>(0, v - corners + 1); k <= std::min(v, pieces - 1); ++k)
+        normal += cut.pieces[k].normal;
+      normal.normalize();
+      Vec3 jump = Vec3::Zero();
+      auto plus = interpolation_at(cut.vertices[v] + delta * normal);
+      auto minus = interpolation_at(cut.vertices[v] - delta * normal);
+      if (plus && minus) {
+        for (std::size_t k = 0; k < plus->nodes.size(); ++k)
+          for (int i = 0; i < dim; ++i) jump[i] += plus->weights[k] * u[dim * plus->nodes[k] + i];
+        for (std::size_t k = 0; k < minus->nodes.size(); ++k)
+          for (int i = 0; i < dim; ++i) jump[i] -= minus->weights[k] * u[dim * minus->nodes[k] + i];
+      }
+      out.points.push_back(cut.vertices[v]);
+      opening.values.insert(opening.values.end(), {jump.x(), jump.y(), jump.z()});
+    }
+    for (Index k = 0; k < pieces; ++k) {
+      for (int corner = 0; corner < corners; ++corner) {
+        // Odd strip triangles are wound (k+1, k, k+2), as the pieces are.
+        const Index v = dim == 3 && k % 2 == 1 && corner < 2 ? k + 1 - corner : k + corner;
+        out.connectivity.push_back(first_point + v);
+      }
+      out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
+      out.cell_types.push_back(dim == 2 ? 3 : 5);  // VTK_LINE, VTK_TRIANGLE
+      appears.values.push_back(cut.appears[k]);
+      which.values.push_back(static_cast<double>(c));
+    }
+  }
+  out.point_fields.push_back(std::move(opening));
+  out.cell_fields.push_back(std::move(appears));
+  out.cell_fields.push_back(std::move(which));
+}
+
+std::vector<LatticeSnapshot> MeshlessDomain::enrichment_lattices() const {
+  std::vector<LatticeSnapshot> out;
+  if (!enrichment_) return out;
+  for (std::size_t c = 0; c < cuts_.size(); ++c) {
+    const EnrichmentGrid* grid = enrichment_->grid(static_cast<Index>(c));
+    if (!grid) continue;
+    LatticeSnapshot l;
+    l.name = "phi_cut" + std::to_string(c);
+    l.origin = grid->lattice_origin();
+    l.axes = grid->lattice_axes();
+    l.count = grid->lattice_count();
+    l.spacing = grid->spacing();
+    l.values = grid->lattice_phi();
+    out.push_back(std::move(l));
+  }
+  return out;
 }
 
 }  // namespace kerf

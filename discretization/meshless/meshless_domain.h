@@ -46,7 +46,14 @@ class MeshlessDomain {
   /// The scene's cuts, checked, in scene order.
   const std::vector<CutSurface>& cuts() const { return cuts_; }
   /// The cuts' weight enrichment of the nodes (null without a cut present).
-  const WeightEnrichment* enrichment() const { return enrichment_.get(); }
+  const CutEnrichment* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
+  /// Brings the cuts to time t. Returns the nodes whose enriched weight
+  /// changed (sorted; empty when no piece appeared) after recomputing the
+  /// rows of at_nodes() they touch (`rows`, when given, receives those rows).
+  std::vector<Index> advance_cuts(double t, std::vector<Index>* rows = nullptr);
+  /// Does the support of one of these nodes cover a boundary-load quadrature
+  /// point (then the load vector must be integrated again)?
+  bool boundary_loads_touch(std::span<const Index> nodes) const;
 
   /// MLS shape functions of the nodes at `points`; a point whose moment matrix
   /// is singular is an error naming it (`what`) and the scene keys to change.
@@ -73,8 +80,13 @@ class MeshlessDomain {
   /// Nodes as VTK vertices with the MLS displacement u_h(x_I), Cauchy and von
   /// Mises stress at the nodes, support radius, nodal volume, condition number.
   void snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const;
+  /// The pieces of the cuts present, with the opening across them (DiscreteBody::cut_snapshot).
+  void cut_snapshot(const Vector& u, BodySnapshot& out) const;
+  std::vector<LatticeSnapshot> enrichment_lattices() const;
 
  private:
+  std::string mls_remedy() const;
+
   NodeSet nodes_;
   std::optional<Box> box_;
   std::optional<Mesh> background_;
@@ -82,11 +94,13 @@ class MeshlessDomain {
   std::vector<char> background_on_boundary_;
   std::unique_ptr<PointIndex> index_;
   std::vector<CutSurface> cuts_;
-  std::unique_ptr<WeightEnrichment> enrichment_;
+  std::unique_ptr<CutEnrichment> enrichment_;
+  std::unique_ptr<PointIndex> load_points_;  // boundary-load quadrature points (growing cuts only)
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors
   double domain_size_;
   ShapeTable at_nodes_;
+  NeighborLists covered_;  // per node: the slots of at_nodes_ holding it (built at the first cut growth)
 };
 
 }  // namespace kerf

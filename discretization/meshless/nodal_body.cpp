@@ -12,39 +12,30 @@
 namespace kerf {
 namespace {
 
-/// The stabilisation's per-slot stiffness k_IJ and lever k_IJ X_IJ, and per
-/// node sum_J k_IJ X_IJ and sum_J k_IJ X_IJ X_IJ^T.
-struct PairTerms {
-  std::vector<double> stiffness, lever, lever_sum, lever_moment;
-};
-
-PairTerms pair_terms(const NodeSet& nodes, const ShapeTable& table, double c, double mu) {
+/// Node I's part of the terms (its slots and its sums), overwritten.
+void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu, Index I, StabilizationPairs& t) {
   const int dim = nodes.dimension;
-  const std::size_t slots = table.neighbours.index.size();
-  PairTerms t{std::vector<double>(slots, 0.0), std::vector<double>(dim * slots, 0.0),
-              std::vector<double>(3 * nodes.size(), 0.0), std::vector<double>(9 * nodes.size(), 0.0)};
-  for (Index I = 0; I < table.point_count(); ++I) {
-    auto near = table.neighbours.of(I);
-    const Index s0 = table.neighbours.start[I];
-    double normaliser = 0.0;
-    for (std::size_t j = 0; j < near.size(); ++j) {
-      double w = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
-      if (!table.weight_factor.empty()) w *= table.weight_factor[s0 + j];  // no pairs across a cut
-      t.stiffness[s0 + j] = near[j] == I ? 0.0 : w;
-      normaliser += w * (nodes.positions[near[j]] - nodes.positions[I]).squaredNorm();
-    }
-    for (std::size_t j = 0; j < near.size(); ++j) {
-      const Index s = s0 + static_cast<Index>(j);
-      const double k = t.stiffness[s] *= c * mu * nodes.volume[I] / normaliser;
-      const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
-      for (int i = 0; i < dim; ++i) {
-        t.lever[dim * s + i] = k * X[i];
-        t.lever_sum[3 * I + i] += k * X[i];
-        for (int l = 0; l < dim; ++l) t.lever_moment[9 * I + 3 * i + l] += k * X[i] * X[l];
-      }
+  auto near = table.neighbours.of(I);
+  const Index s0 = table.neighbours.start[I];
+  double normaliser = 0.0;
+  for (std::size_t j = 0; j < near.size(); ++j) {
+    double w = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
+    if (!table.weight_factor.empty()) w *= table.weight_factor[s0 + j];  // no pairs across a cut
+    t.stiffness[s0 + j] = near[j] == I ? 0.0 : w;
+    normaliser += w * (nodes.positions[near[j]] - nodes.positions[I]).squaredNorm();
+  }
+  std::fill_n(t.lever_sum.begin() + 3 * I, 3, 0.0);
+  std::fill_n(t.lever_moment.begin() + 9 * I, 9, 0.0);
+  for (std::size_t j = 0; j < near.size(); ++j) {
+    const Index s = s0 + static_cast<Index>(j);
+    const double k = t.stiffness[s] *= c * mu * nodes.volume[I] / normaliser;
+    const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
+    for (int i = 0; i < dim; ++i) {
+      t.lever[dim * s + i] = k * X[i];
+      t.lever_sum[3 * I + i] += k * X[i];
+      for (int l = 0; l < dim; ++l) t.lever_moment[9 * I + 3 * i + l] += k * X[i] * X[l];
     }
   }
-  return t;
 }
 
 }  // namespace
@@ -53,21 +44,43 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
     : domain_(std::move(domain)),
       law_(scene.material),
       density_(scene.material.density),
-      stabilized_(scene.discretization.meshless.stabilization) {
+      stabilized_(scene.discretization.meshless.stabilization),
+      scene_(scene) {
   const NodeSet& nodes = domain_.nodes();
   if (stabilized_) {
-    PairTerms t = pair_terms(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu);
-    pair_stiffness_ = std::move(t.stiffness);
-    pair_lever_ = std::move(t.lever);
-    lever_sum_ = std::move(t.lever_sum);
-    lever_moment_ = std::move(t.lever_moment);
+    const std::size_t slots = domain_.at_nodes().neighbours.index.size();
+    pairs_ = {std::vector<double>(slots, 0.0), std::vector<double>(nodes.dimension * slots, 0.0),
+              std::vector<double>(3 * nodes.size(), 0.0), std::vector<double>(9 * nodes.size(), 0.0)};
+    for (Index I = 0; I < nodes.size(); ++I)
+      pair_row(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu, I, pairs_);
   }
   const int dim = domain_.dimension();
   load_ = Vector::Zero(dof_count());
   for (Index I = 0; I < nodes.size(); ++I)
     for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
+  body_load_ = load_;
   domain_.add_boundary_loads(scene, load_);
   dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
+}
+
+std::optional<CutUpdate> NodalBody::advance_cuts(double t) {
+  CutUpdate update;
+  std::vector<Index> rows;
+  const std::vector<Index> changed = domain_.advance_cuts(t, &rows);
+  if (changed.empty()) return std::nullopt;
+  update.nodes = static_cast<Index>(changed.size());
+  update.points = static_cast<Index>(rows.size());
+  if (stabilized_) {
+    const Index count = static_cast<Index>(rows.size());
+#pragma omp parallel for schedule(dynamic, 64)
+    for (Index r = 0; r < count; ++r)
+      pair_row(domain_.nodes(), domain_.at_nodes(), default_stabilization, law_.lame().mu, rows[r], pairs_);
+  }
+  if (domain_.boundary_loads_touch(changed)) {
+    load_ = body_load_;
+    domain_.add_boundary_loads(scene_, load_);
+  }
+  return update;
 }
 
 template <int Dim, bool Stabilized>
@@ -78,8 +91,8 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   const Index* start = table.neighbours.start.data();
   const Index* index = table.neighbours.index.data();
   const double* g = table.gradient.data();
-  const double* c = pair_lever_.data();
-  const double* k = pair_stiffness_.data();
+  const double* c = pairs_.lever.data();
+  const double* k = pairs_.stiffness.data();
   f.resize(dofs);
 #pragma omp parallel
   {
@@ -122,8 +135,8 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
           q[i][l] = nodes.volume[I] * P(i, l);
           if constexpr (Stabilized) {
             double hM = 0.0;
-            for (int m = 0; m < Dim; ++m) hM += h[i][m] * lever_moment_[9 * I + 3 * m + l];
-            q[i][l] -= d[i][l] - uI[i] * lever_sum_[3 * I + l] - hM;
+            for (int m = 0; m < Dim; ++m) hM += h[i][m] * pairs_.lever_moment[9 * I + 3 * m + l];
+            q[i][l] -= d[i][l] - uI[i] * pairs_.lever_sum[3 * I + l] - hM;
           }
         }
       double pushI[Dim] = {};
@@ -186,7 +199,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
       Vec3 e = Vec3::Zero(), X = nodes.positions[near[j]] - nodes.positions[I];
       for (int i = 0; i < dim; ++i) e[i] = u[dim * near[j] + i] - u[dim * I + i];
       e -= (F - Mat3::Identity()) * X;
-      stab += 0.5 * pair_stiffness_[s] * e.squaredNorm();
+      stab += 0.5 * pairs_.stiffness[s] * e.squaredNorm();
     }
   }
   if (stabilization) *stabilization = stab;
@@ -212,7 +225,7 @@ void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) con
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
   Eigen::VectorXd b(n);
   for (Index j = 0; j < n; ++j) {
-    const double k = pair_stiffness_[s0 + j];
+    const double k = pairs_.stiffness[s0 + j];
     if (k == 0.0) continue;
     const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
     for (Index a = 0; a < n; ++a) {

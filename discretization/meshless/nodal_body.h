@@ -16,6 +16,14 @@
 
 namespace kerf {
 
+/// The stabilisation's per-slot stiffness k_IJ (N/m; 0 for J = I) and lever
+/// k_IJ X_IJ (dim entries, N), X_IJ = x_J - x_I, and per node sum_J k_IJ X_IJ
+/// (3 entries, N) and sum_J k_IJ X_IJ X_IJ^T (3 x 3 row-major, N m). Slots are
+/// those of the domain's at_nodes() table.
+struct StabilizationPairs {
+  std::vector<double> stiffness, lever, lever_sum, lever_moment;
+};
+
 class NodalBody final : public DiscreteBody {
  public:
   /// The default c of the stabilisation (meshless.stabilization: true).
@@ -41,12 +49,15 @@ class NodalBody final : public DiscreteBody {
   void external_force(double t, Vector& f) const override { f = load_; }
   std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
   std::optional<double> critical_time_step() const override { return std::nullopt; }
+  std::optional<CutUpdate> advance_cuts(double t) override;
 
   std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
     return domain_.interpolation_at(x);
   }
   void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
+  void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
+  std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
 
   const MeshlessDomain& domain() const { return domain_; }
   /// Stabilisation energy alone (J): zero for affine displacement fields.
@@ -69,11 +80,9 @@ class NodalBody final : public DiscreteBody {
   bool stabilized_;
   Vector load_;
   std::vector<DirichletDof> dirichlet_;
-  // The stabilisation (empty without it); slots are those of domain_.at_nodes().
-  std::vector<double> pair_stiffness_;  // per slot: k_IJ (N/m); 0 for J = I
-  std::vector<double> pair_lever_;      // per slot: k_IJ X_IJ, X_IJ = x_J - x_I, dim entries (N)
-  std::vector<double> lever_sum_;       // per node: sum_J k_IJ X_IJ, 3 entries (N)
-  std::vector<double> lever_moment_;    // per node: sum_J k_IJ X_IJ X_IJ^T, 3 x 3 row-major (N m)
+  StabilizationPairs pairs_;  // empty without the stabilisation
+  Scene scene_;               // the loads, integrated again when a growing cut reaches them
+  Vector body_load_;          // gravity alone (N)
   mutable std::vector<double> thread_forces_;
 };
 

@@ -13,13 +13,7 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<double> weight
   slot_point_.resize(slots);
   for (Index p = 0; p < nb.size(); ++p)
     for (Index s = nb.start[p]; s < nb.start[p + 1]; ++s) slot_point_[s] = p;
-  // Transpose of the neighbour lists by counting sort: slots of a node in point order.
-  users_.start.assign(node_count + 1, 0);
-  for (Index K : nb.index) ++users_.start[K + 1];
-  for (Index K = 0; K < node_count; ++K) users_.start[K + 1] += users_.start[K];
-  users_.index.resize(slots);
-  std::vector<Index> next(users_.start.begin(), users_.start.end() - 1);
-  for (Index s = 0; s < slots; ++s) users_.index[next[nb.index[s]]++] = s;
+  users_ = transpose_slots(nb, node_count);
 }
 
 void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {

@@ -33,6 +33,15 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
                        const std::string& what, const std::string& context, const std::string& remedy,
                        const WeightEnrichment* enrichment = nullptr);
 
+/// Recomputes rows `rows` of a table built by shape_table at `points` (the
+/// same points, same neighbour lists) with the cuts' current enrichment: the
+/// cut grew. Throws like shape_table.
+void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
+                        std::span<const Index> rows, const WeightEnrichment& enrichment, const std::string& what,
+                        const std::string& context, const std::string& remedy);
+/// The rows (increasing) with a neighbour flagged in `node_flag`: a scan of the whole table.
+std::vector<Index> rows_touching(const ShapeTable& table, std::span<const char> node_flag);
+
 /// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);
 /// u_h = sum_k phi_k u_{node_k} at one point (m; z = 0 in 2D).

@@ -23,11 +23,14 @@ TEST(CrackScenes, CentreCrackOpeningAgreesWithQuarterModelFemWithin3Percent) {
   // Griffith's infinite plate, 4 sigma a (1 - nu^2) / E, is below: the plate is finite.
   EXPECT_GT(reference, 4 * 1000 * 0.01 * (1 - 0.09) / 1e6);
   for (std::string method : {"nodal", "efg"})
-    for (std::string rule : {"grid", "single", "multiplicative"}) {
-      json s = testing::run_scene_file(
-          "scenes/crack_plate_2d.yaml",
-          {"discretization.method=" + method, "cuts.0.enrichment=" + rule, "output.vtk=false"},
-          "crack_" + method + "_" + rule);
+    for (std::string rule : {"grid", "grid-interpolated", "single", "multiplicative"}) {
+      const bool interpolated = rule == "grid-interpolated";
+      json s = testing::run_scene_file("scenes/crack_plate_2d.yaml",
+                                       {"discretization.method=" + method,
+                                        "cuts.0.enrichment=" + (interpolated ? std::string("grid") : rule),
+                                        std::string("cuts.0.grid.lookup=") + (interpolated ? "interpolated" : "exact"),
+                                        "output.vtk=false"},
+                                       "crack_" + method + "_" + rule);
       ASSERT_EQ(s["status"], "ok") << method << " " << rule;
       const double delta = opening(s);
       std::printf("crack opening %s %s: %.5e m, FEM %.5e m, difference %.2f%%\n", method.c_str(), rule.c_str(), delta,

@@ -7,6 +7,9 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
+#include <vtkImageData.h>
+#include <vtkMatrix3x3.h>
+#include <vtkXMLImageDataReader.h>
 #include <vtkXMLUnstructuredGridReader.h>
 
 #include <filesystem>
@@ -65,6 +68,46 @@ TEST(VtkOutput, SeriesOpensWithVtkReaderAndHoldsTheFields) {
       }
     }
   }
+}
+
+// A growing cut: its surface is a part of its own with the opening across it,
+// and the Enrichment Grid's phi a .vti lattice (in the cut's frame) in [-1, 1].
+TEST(VtkOutput, GrowingCutWritesItsSurfaceAndTheGridsPhi) {
+  const std::string dir = testing::output_directory("vtk_growing_cut");
+  Scene scene = read_scene(testing::source_path("scenes/cutting_2d.yaml"), {"output.dir=" + dir, "output.vtk.every=50"});
+  run_scene(scene, {"", true});
+  std::ifstream pvd(dir + "/cutting_2d.pvd");
+  std::string text((std::istreambuf_iterator<char>(pvd)), std::istreambuf_iterator<char>());
+  EXPECT_NE(text.find("part=\"1\" file=\"cutting_2d_cut_0002.vtu\""), std::string::npos) << text;
+  EXPECT_NE(text.find("part=\"2\" file=\"cutting_2d_phi_cut0_0002.vti\""), std::string::npos) << text;
+
+  vtkNew<vtkXMLUnstructuredGridReader> reader;
+  reader->SetFileName((dir + "/cutting_2d_cut_0002.vtu").c_str());
+  reader->Update();
+  vtkUnstructuredGrid* cut = reader->GetOutput();
+  EXPECT_EQ(cut->GetNumberOfCells(), 20);  // every segment present at the end
+  EXPECT_EQ(cut->GetCellType(0), 3);       // VTK_LINE
+  vtkDataArray* opening = cut->GetPointData()->GetArray("opening");
+  ASSERT_NE(opening, nullptr);
+  // The cut is open behind its tip: the faces part in y.
+  EXPECT_GT(opening->GetComponent(10, 1), 1e-7);
+  ASSERT_NE(cut->GetCellData()->GetArray("appears"), nullptr);
+
+  vtkNew<vtkXMLImageDataReader> image_reader;
+  image_reader->SetFileName((dir + "/cutting_2d_phi_cut0_0002.vti").c_str());
+  image_reader->Update();
+  vtkImageData* image = image_reader->GetOutput();
+  vtkDataArray* phi = image->GetPointData()->GetArray("phi");
+  ASSERT_NE(phi, nullptr);
+  EXPECT_GT(image->GetNumberOfPoints(), 1000);
+  double low = 2.0, high = -2.0;
+  for (vtkIdType p = 0; p < phi->GetNumberOfTuples(); ++p)
+    low = std::min(low, phi->GetTuple1(p)), high = std::max(high, phi->GetTuple1(p));
+  EXPECT_NEAR(low, -1.0, 1e-12);
+  EXPECT_NEAR(high, 1.0, 1e-12);
+  // The lattice's first axis runs along the cut (+x), its second along the normal.
+  EXPECT_NEAR(image->GetDirectionMatrix()->GetElement(0, 0), 1.0, 1e-12);
+  EXPECT_NEAR(image->GetDirectionMatrix()->GetElement(1, 1), 1.0, 1e-12);
 }
 
 }  // namespace

@@ -12,7 +12,8 @@
 #include "discretization/enrichment/cut_phi.h"
 #include "discretization/enrichment/diffraction_enrichment.h"
 #include "discretization/enrichment/multiplicative_enrichment.h"
-#include "discretization/enrichment/phi_field_enrichment.h"
+#include "discretization/enrichment/grid_enrichment.h"
+#include "discretization/enrichment/single_piece_enrichment.h"
 #include "discretization/enrichment/visibility_enrichment.h"
 #include "discretization/meshless/mls_shape.h"
 
@@ -30,6 +31,17 @@ CutSurface strip_3d() {
                      {Vec3(-0.5, -0.3, 0), Vec3(-0.5, 0.3, 0.02), Vec3(0, -0.3, 0.05), Vec3(0, 0.3, 0.04),
                       Vec3(0.5, -0.3, 0.0), Vec3(0.5, 0.3, 0.03)},
                      std::vector<double>(6, 0.0), "");
+}
+
+/// The grid rule for these nodes (exact lookup unless told).
+std::unique_ptr<GridEnrichment> grid_rule(const CutSurface& c, Index pieces, const std::vector<Vec3>& nodes,
+                                          const std::vector<double>& support,
+                                          GridLookup lookup = GridLookup::exact, double spacing = 0.01) {
+  const std::vector<char> flags = nodes_reached(c, pieces, nodes, support);
+  std::vector<Index> reached;
+  for (std::size_t I = 0; I < flags.size(); ++I)
+    if (flags[I]) reached.push_back(static_cast<Index>(I));
+  return std::make_unique<GridEnrichment>(c, pieces, spacing, lookup, nodes, support, reached);
 }
 
 PhiValue whole_phi(const CutSurface& c, const Vec3& x) {
@@ -106,8 +118,8 @@ TEST(WeightEnrichment, FactorsHaveTheGradientsOfTheirFiniteDifferences) {
   const std::vector<double> support(nodes.size(), 0.6);
   const Index n = c.piece_count();
   std::vector<std::unique_ptr<WeightEnrichment>> rules;
-  rules.push_back(std::make_unique<PhiFieldEnrichment>(c, n, PhiFieldEnrichment::Field::grid, nodes, support));
-  rules.push_back(std::make_unique<PhiFieldEnrichment>(c, n, PhiFieldEnrichment::Field::nearest_piece, nodes, support));
+  rules.push_back(grid_rule(c, n, nodes, support));
+  rules.push_back(std::make_unique<SinglePieceEnrichment>(c, n, nodes, support));
   rules.push_back(std::make_unique<MultiplicativeEnrichment>(c, n, nodes, support));
   rules.push_back(std::make_unique<DiffractionEnrichment>(c, n, nodes, support));
   std::mt19937 random(7);
@@ -141,7 +153,8 @@ TEST(WeightEnrichment, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
   const CutSurface c = straight_2d();
   const std::vector<Vec3> nodes = {Vec3(0.0, 0.05, 0), Vec3(0.45, 0.05, 0), Vec3(0.0, 2.0, 0)};
   const std::vector<double> support = {0.3, 0.3, 0.3};
-  PhiFieldEnrichment grid(c, 1, PhiFieldEnrichment::Field::grid, nodes, support);
+  const auto grid_owner = grid_rule(c, 1, nodes, support);
+  const GridEnrichment& grid = *grid_owner;
   VisibilityEnrichment visibility(c, 1, nodes, support);
   EXPECT_FALSE(grid.enriches(2));  // its support does not reach the cut
   for (const WeightEnrichment* rule : std::initializer_list<const WeightEnrichment*>{&grid, &visibility}) {
@@ -166,7 +179,8 @@ TEST(WeightEnrichment, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
       nodes.emplace_back(i * h + 0.013, j * h + 0.021, 0);
       support.push_back(2.6 * h);
     }
-  PhiFieldEnrichment grid(c, c.piece_count(), PhiFieldEnrichment::Field::grid, nodes, support);
+  const auto grid_owner = grid_rule(c, c.piece_count(), nodes, support);
+  const GridEnrichment& grid = *grid_owner;
   auto field = [](const Vec3& x) { return 0.3 + 2.0 * x.x() - 1.5 * x.y(); };
   std::mt19937 random(11);
   std::uniform_real_distribution<double> u(-0.7, 0.7);

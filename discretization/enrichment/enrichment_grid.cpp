@@ -1,0 +1,194 @@
+#include "discretization/enrichment/enrichment_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/check.h"
+
+namespace kerf {
+
+EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding)
+    : cut_(&cut),
+      pieces_(pieces),
+      spacing_(spacing),
+      frame_(common_frame(cut, 0, pieces)),
+      dim_(cut.dimension),
+      anchor_(cut.vertices.front()) {
+  KERF_CHECK(pieces > 0 && pieces <= cut.piece_count() && spacing > 0.0, "an Enrichment Grid needs pieces and a spacing");
+  axes_ = dim_ == 2 ? std::array<Vec3, 3>{frame_.axis[0], frame_.normal, Vec3::UnitZ()}
+                    : std::array<Vec3, 3>{frame_.axis[0], frame_.axis[1], frame_.normal};
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (Index k = 0; k < pieces; ++k)
+    for (int c = 0; c < dim_; ++c) {
+      const Vec3 q = coordinates(cut.pieces[k].corner[c]);
+      low = low.cwiseMin(q), high = high.cwiseMax(q);
+    }
+  double points = 1.0;  // counted in double: a too fine spacing overflows an Index
+  std::array<double, 3> per_axis{1.0, 1.0, 1.0};
+  for (int a = 0; a < dim_; ++a) {
+    // Whole cells from the anchor: a cut that grows without turning keeps its lattice points.
+    low_[a] = std::floor((low[a] - padding) / spacing) * spacing;
+    per_axis[a] = std::ceil((high[a] + padding - low_[a]) / spacing) + 1.0;
+    points *= per_axis[a];
+  }
+  KERF_CHECK(points <= max_points, cut.where, ": key 'grid.spacing': value ", spacing, " m gives an Enrichment Grid of ",
+             points, " points around the cut (padding ", padding, " m, twice the largest support radius); expected at most ",
+             max_points, ": a larger spacing");
+  for (int a = 0; a < dim_; ++a) count_[a] = static_cast<Index>(per_axis[a]);
+  const Index total = static_cast<Index>(points);
+  const Index columns = dim_ == 2 ? count_[0] : count_[0] * count_[1];
+  const Index along = count_[dim_ - 1];
+  columns_.resize(columns);
+  phi_.resize(total);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < columns; ++c) {
+    const Vec3 base = column_point(c);
+    columns_[c] = column_at(base);
+    for (Index k = 0; k < along; ++k) {
+      const Index p = c + columns * k;
+      phi_[p] = phi_in(columns_[c], base + (low_[dim_ - 1] + k * spacing_) * axes_[dim_ - 1]).value;
+    }
+  }
+}
+
+Vec3 EnrichmentGrid::coordinates(const Vec3& x) const {
+  const Vec3 d = x - anchor_;
+  return Vec3(axes_[0].dot(d), axes_[1].dot(d), dim_ == 3 ? axes_[2].dot(d) : 0.0);
+}
+
+Vec3 EnrichmentGrid::column_point(Index column) const {
+  const Index i = column % count_[0], j = column / count_[0];
+  Vec3 x = anchor_ + (low_[0] + i * spacing_) * axes_[0];
+  if (dim_ == 3) x += (low_[1] + j * spacing_) * axes_[1];
+  return x;
+}
+
+bool EnrichmentGrid::same_lattice(const EnrichmentGrid& other) const {
+  for (int a = 0; a < dim_; ++a)
+    if ((axes_[a] - other.axes_[a]).norm() > 1e-12) return false;
+  return anchor_ == other.anchor_ && spacing_ == other.spacing_;
+}
+
+Vec3 EnrichmentGrid::lattice_origin() const {
+  Vec3 x = anchor_;
+  for (int a = 0; a < dim_; ++a) x += low_[a] * axes_[a];
+  return x;
+}
+
+EnrichmentGrid::Column EnrichmentGrid::column_at(const Vec3& x) const {
+  const CutRegion r = cut_region(*cut_, 0, pieces_, frame_, x);
+  return {r.piece, r.d_plus, r.d_plus_gradient};
+}
+
+PhiValue EnrichmentGrid::phi_in(const Column& c, const Vec3& x) const {
+  const CutPiece& p = cut_->pieces[c.piece];
+  CutRegion r;
+  r.piece = c.piece;
+  r.d_plus = c.d_plus;
+  r.d_plus_gradient = c.d_plus_gradient;
+  r.s = p.normal.dot(x - p.corner[0]);
+  r.s_gradient = p.normal;
+  return phi_of(r);
+}
+
+PhiValue EnrichmentGrid::exact(const Vec3& x) const { return phi_of(cut_region(*cut_, 0, pieces_, frame_, x)); }
+
+PhiValue EnrichmentGrid::interpolated(const Vec3& x) const {
+  // d+ is continuous in the plane: interpolated between the columns around x;
+  // the region is the nearest column's, and s is exact from its piece, so the
+  // jump across the faces stays sharp.
+  const Vec3 q = coordinates(x);
+  const int in_plane = dim_ - 1;
+  std::array<Index, 2> cell{0, 0}, nearest{0, 0};
+  std::array<double, 2> f{0.0, 0.0};
+  for (int a = 0; a < in_plane; ++a) {
+    const double r = (q[a] - low_[a]) / spacing_;
+    if (!(r >= 0.0 && r <= count_[a] - 1)) return exact(x);
+    cell[a] = std::min(static_cast<Index>(r), count_[a] - 2);
+    f[a] = r - cell[a];
+    nearest[a] = cell[a] + (f[a] >= 0.5 ? 1 : 0);
+  }
+  Column c = columns_[nearest[0] + count_[0] * nearest[1]];
+  c.d_plus = 0.0;
+  c.d_plus_gradient = Vec3::Zero();
+  const int corners = 1 << in_plane;
+  for (int corner = 0; corner < corners; ++corner) {
+    double weight = 1.0;
+    Index column = 0, stride = 1;
+    for (int a = 0; a < in_plane; ++a) {
+      const int bit = (corner >> a) & 1;
+      weight *= bit ? f[a] : 1.0 - f[a];
+      column += (cell[a] + bit) * stride;
+      stride *= count_[a];
+    }
+    c.d_plus += weight * columns_[column].d_plus;
+    c.d_plus_gradient += weight * columns_[column].d_plus_gradient;
+  }
+  return phi_in(c, x);
+}
+
+bool EnrichmentGrid::same(const Column& a, const Column& b, const Vec3& base) const {
+  const CutPiece &pa = cut_->pieces[a.piece], &pb = cut_->pieces[b.piece];
+  const double tolerance = 1e-12 * std::max(cut_->extent, spacing_);
+  const bool same_plane = a.piece == b.piece || ((pa.normal - pb.normal).norm() < 1e-12 &&
+                                                 std::abs(pa.normal.dot(pa.corner[0] - pb.corner[0])) < tolerance);
+  if (same_plane) {
+    if (std::abs(a.d_plus - b.d_plus) > tolerance) return false;
+    return a.d_plus == 0.0 || (a.d_plus_gradient - b.d_plus_gradient).norm() < 1e-12;
+  }
+  // Over the cut (d+ = 0) phi is the sign of s: two planes give the same phi
+  // on the column except between their crossings of it; same if the lattice
+  // holds no point there.
+  if (a.d_plus != 0.0 || b.d_plus != 0.0) return false;
+  const Vec3& along = axes_[dim_ - 1];
+  auto crossing = [&](const CutPiece& p) { return -p.normal.dot(base - p.corner[0]) / p.normal.dot(along); };
+  const double z0 = std::min(crossing(pa), crossing(pb)), z1 = std::max(crossing(pa), crossing(pb));
+  const double bottom = low_[dim_ - 1], top = bottom + (count_[dim_ - 1] - 1) * spacing_;
+  return z1 < bottom - spacing_ || z0 > top + spacing_;
+}
+
+std::vector<char> EnrichmentGrid::changed_columns(const EnrichmentGrid& before) const {
+  const Index columns = static_cast<Index>(columns_.size());
+  std::vector<char> changed(columns, 0);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < columns; ++c) {
+    const Vec3 base = column_point(c);
+    changed[c] = !same(columns_[c], before.column_at(base), base);
+  }
+  // One column of dilation: a change narrower than the spacing still shows.
+  std::vector<char> dilated(changed);
+  const Index n0 = count_[0], n1 = dim_ == 3 ? count_[1] : 1;
+  for (Index c = 0; c < columns; ++c) {
+    if (!changed[c]) continue;
+    const Index i = c % n0, j = c / n0;
+    for (Index dj = -1; dj <= 1; ++dj)
+      for (Index di = -1; di <= 1; ++di) {
+        const Index ii = i + di, jj = j + dj;
+        if (ii >= 0 && ii < n0 && jj >= 0 && jj < n1) dilated[ii + n0 * jj] = 1;
+      }
+  }
+  return dilated;
+}
+
+bool EnrichmentGrid::reaches(const std::vector<char>& columns, const Vec3& x, double radius) const {
+  const Vec3 q = coordinates(x);
+  const Index n1 = dim_ == 3 ? count_[1] : 1;
+  auto range = [&](int a, Index n) {
+    const double r = (q[a] - low_[a]) / spacing_, span = radius / spacing_;
+    return std::pair<Index, Index>{std::max<Index>(0, static_cast<Index>(std::ceil(r - span))),
+                                   std::min<Index>(n - 1, static_cast<Index>(std::floor(r + span)))};
+  };
+  const auto [i0, i1] = range(0, count_[0]);
+  const auto [j0, j1] = dim_ == 3 ? range(1, n1) : std::pair<Index, Index>{0, 0};
+  for (Index j = j0; j <= j1; ++j)
+    for (Index i = i0; i <= i1; ++i) {
+      if (!columns[i + count_[0] * j]) continue;
+      // The column is a line along the normal: the ball reaches it when its projection is within the radius.
+      const double du = low_[0] + i * spacing_ - q[0];
+      const double dv = dim_ == 3 ? low_[1] + j * spacing_ - q[1] : 0.0;
+      if (du * du + dv * dv < radius * radius) return true;
+    }
+  return false;
+}
+
+}  // namespace kerf

@@ -1,0 +1,87 @@
+#pragma once
+// The Enrichment Grid (paper section 6) as a data structure: a lattice aligned
+// with the cut's common frame (2D: t along the common line, then the normal;
+// 3D: two in-plane axes, then the normal), anchored at the cut's first vertex
+// (so a cut that grows without turning keeps its lattice points), reaching
+// `padding` beyond the cut,
+// storing phi and its gradient at every lattice point. Region and d+ depend on
+// a point's projection onto the common line/plane only, so they are computed
+// once per column (the lattice points sharing a projection) and s per point.
+// It serves phi exactly (the analytic definition, O(pieces) per query) or
+// interpolated (O(1)): d+ and its gradient interpolated between the columns
+// around the point, the region of the nearest column, s exact from that
+// region's piece, so the jump across the faces stays sharp and only the
+// smooth part around the tips (and the region boundaries at kinks, within
+// half a spacing) is approximated. It stores phi at every lattice point (for
+// ParaView) and tells which columns changed when the cut grew: the nodes
+// whose support reaches none of them keep their enriched weight.
+#include <array>
+#include <vector>
+
+#include "discretization/enrichment/cut_phi.h"
+#include "geometry/cut_surface.h"
+
+namespace kerf {
+
+class EnrichmentGrid {
+ public:
+  /// Pieces [0, pieces) of `cut` (pieces > 0); lattice spacing and padding in m.
+  /// Refuses (naming the cut) a lattice of more than `max_points` points.
+  EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding);
+
+  static constexpr Index max_points = 20'000'000;
+
+  Index pieces() const { return pieces_; }
+  const CutFrame& frame() const { return frame_; }
+  double spacing() const { return spacing_; }
+
+  /// phi from the analytic definition (the grid's regions and d+, eq. 23/25).
+  PhiValue exact(const Vec3& x) const;
+  /// phi from d+ interpolated between columns (see above); exact outside the lattice.
+  PhiValue interpolated(const Vec3& x) const;
+
+  /// Per column: does phi differ from `before` (the same cut with fewer
+  /// pieces) on it or on a neighbouring column? Changes between columns thinner
+  /// than a lattice spacing are caught by that one-column dilation.
+  std::vector<char> changed_columns(const EnrichmentGrid& before) const;
+  /// Same lattice points as `other` (same axes, anchor, spacing; the extent may differ)?
+  bool same_lattice(const EnrichmentGrid& other) const;
+  /// Does the ball (x, radius) reach a flagged column?
+  bool reaches(const std::vector<char>& columns, const Vec3& x, double radius) const;
+
+  /// The lattice for output: origin, axes (unit, world frame), points per axis
+  /// (1 on unused axes), phi per point with axis 0 fastest.
+  Vec3 lattice_origin() const;
+  const std::array<Vec3, 3>& lattice_axes() const { return axes_; }
+  const std::array<Index, 3>& lattice_count() const { return count_; }
+  const std::vector<double>& lattice_phi() const { return phi_; }
+
+ private:
+  struct Column {
+    Index piece = 0;
+    double d_plus = 0.0;
+    Vec3 d_plus_gradient = Vec3::Zero();
+  };
+  /// The lattice coordinates of x (lattice axes, origin at the anchor).
+  Vec3 coordinates(const Vec3& x) const;
+  /// The world point of a column on the common line/plane.
+  Vec3 column_point(Index column) const;
+  Column column_at(const Vec3& x) const;
+  PhiValue phi_in(const Column& c, const Vec3& x) const;
+  /// Same phi all along the column through `base` from both?
+  bool same(const Column& a, const Column& b, const Vec3& base) const;
+
+  const CutSurface* cut_;
+  Index pieces_;
+  double spacing_;
+  CutFrame frame_;
+  int dim_;
+  Vec3 anchor_;                 // the cut's first vertex: lattice coordinates start here
+  std::array<Vec3, 3> axes_;    // lattice axes; the last used one is the normal
+  Vec3 low_ = Vec3::Zero();     // lattice corner in lattice coordinates
+  std::array<Index, 3> count_{1, 1, 1};
+  std::vector<Column> columns_; // axis 0 fastest (3D: then axis 1)
+  std::vector<double> phi_;     // per point, for output
+};
+
+}  // namespace kerf

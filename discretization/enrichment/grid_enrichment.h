@@ -1,0 +1,53 @@
+#pragma once
+// The Enrichment Grid's rule (rule `grid`): every enriched node sees the one
+// phi of the whole cut, g_I(x) = (1 + sigma_I phi(x)) / 2, sigma_I = +1 or -1
+// the side of node I (phi(x_I) >= 0 is the + side), phi served by the grid
+// exactly or interpolated. When the cut grows, the grid is rebuilt in the new
+// common frame and only the nodes whose support reaches a changed column are
+// reported as changed.
+#include <memory>
+
+#include "discretization/enrichment/enrichment_grid.h"
+#include "discretization/enrichment/weight_enrichment.h"
+
+namespace kerf {
+
+class GridEnrichment final : public WeightEnrichment {
+ public:
+  /// The cut's first `pieces` pieces (> 0); `reached`: the nodes whose support
+  /// reaches them. Lattice spacing in m; the lattice reaches twice the largest
+  /// support radius beyond the cut (as far as a covered point can be).
+  GridEnrichment(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup, std::span<const Vec3> nodes,
+                 std::span<const double> support, std::span<const Index> reached);
+  GridEnrichment(const GridEnrichment&) = delete;
+  GridEnrichment& operator=(const GridEnrichment&) = delete;
+
+  bool enriches(Index node) const override { return enriched_[node]; }
+  WeightFactor factor(Index node, const Vec3& x) const override;
+
+  /// The cut grew to `pieces` pieces; `reached`: the nodes whose support
+  /// reaches one of the new ones. Appends to `changed` the nodes whose g_I
+  /// changed: the newly enriched, and the enriched whose support reaches a
+  /// lattice column where phi changed (with interpolation, every enriched
+  /// node when the cut turned and the lattice with it).
+  void grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed);
+
+  const EnrichmentGrid& grid() const { return *grid_; }
+  Index enriched_count() const { return static_cast<Index>(enriched_list_.size()); }
+
+ private:
+  PhiValue phi(const Vec3& x) const;
+  void enrich(Index node);
+
+  CutSurface cut_;  // the grid points into it: this object does not move
+  double spacing_, padding_;
+  GridLookup lookup_;
+  std::unique_ptr<EnrichmentGrid> grid_;
+  std::vector<Vec3> nodes_;
+  std::vector<double> support_;
+  std::vector<char> enriched_;
+  std::vector<Index> enriched_list_;
+  std::vector<signed char> side_;  // sigma_I
+};
+
+}  // namespace kerf

@@ -1,0 +1,80 @@
+// A cut that grows during a dynamic run: it runs to the end with its energy
+// bounded by the work of the load, every growth is timed, the cut opens, and
+// the shape functions updated incrementally, growth after growth, equal those
+// of the same body built with the whole cut present from the start.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "core/run_report.h"
+#include "discretization/body_factory.h"
+#include "discretization/meshless/nodal_body.h"
+#include "problem/scene_reader.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+/// Rows of probes.csv as numbers, keyed by column name.
+std::vector<std::map<std::string, double>> read_probes(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::map<std::string, double> values;
+    std::string cell;
+    for (const std::string& name : names)
+      if (std::getline(row, cell, ',')) values[name] = std::stod(cell);
+    rows.push_back(values);
+  }
+  return rows;
+}
+
+TEST(GrowingCut, RunsOneHundredStepsWithBoundedEnergyAndTimesEveryGrowth) {
+  json s = testing::run_scene_file("scenes/cutting_2d.yaml", {"output.vtk=false"}, "growing_cut");
+  ASSERT_EQ(s["status"], "ok");
+  EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 19);  // 21 vertices: 1 segment at t = 0, 19 more
+  EXPECT_GT(s["timing"]["cut_update_ms"]["median"].get<double>(), 0.0);
+  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut/probes.csv");
+  ASSERT_EQ(rows.size(), 101u);
+  for (const auto& r : rows) {
+    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
+    ASSERT_TRUE(std::isfinite(stored));
+    // Damped, and a cut only frees the body: what it stores never exceeds the work done on it.
+    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << "t = " << r.at("time");
+  }
+  const double opening = rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy");
+  // Uncut, the probes 20 micrometres apart would separate by the strain (1e-3) times that gap.
+  const double uncut = 1000.0 / 1e6 * 2e-5;
+  EXPECT_GT(opening, 10.0 * uncut) << "the cut behind x = -0.005 should open";
+}
+
+TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCut) {
+  const Scene growing = read_scene(testing::source_path("scenes/cutting_2d.yaml"));
+  Scene whole = growing;
+  for (double& t : whole.cuts[0].times) t = 0.0;
+  RunReport report;
+  auto body = make_body(growing, report);
+  auto reference = make_body(whole, report);
+  for (int step = 1; step <= 100; ++step) body->advance_cuts(step * 2.0e-5);
+  const ShapeTable& a = dynamic_cast<const NodalBody&>(*body).domain().at_nodes();
+  const ShapeTable& b = dynamic_cast<const NodalBody&>(*reference).domain().at_nodes();
+  ASSERT_EQ(a.value.size(), b.value.size());
+  double worst = 0.0;
+  for (std::size_t k = 0; k < a.value.size(); ++k) worst = std::max(worst, std::abs(a.value[k] - b.value[k]));
+  for (std::size_t k = 0; k < a.gradient.size(); ++k)
+    worst = std::max(worst, 1e-3 * std::abs(a.gradient[k] - b.gradient[k]));  // gradients in 1/m, h = 1 mm
+  EXPECT_LT(worst, 1e-12);
+}
+
+}  // namespace
+}  // namespace kerf
