@@ -1,6 +1,7 @@
 #include "discretization/meshless/meshless_domain.h"
 
 #include <algorithm>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -258,13 +259,18 @@ void MeshlessDomain::cut_snapshot(const Vector& u, BodySnapshot& out) const {
         normal += cut.pieces[k].normal;
       normal.normalize();
       Vec3 jump = Vec3::Zero();
-      auto plus = interpolation_at(cut.vertices[v] + delta * normal);
-      auto minus = interpolation_at(cut.vertices[v] - delta * normal);
-      if (plus && minus) {
-        for (std::size_t k = 0; k < plus->nodes.size(); ++k)
-          for (int i = 0; i < dim; ++i) jump[i] += plus->weights[k] * u[dim * plus->nodes[k] + i];
-        for (std::size_t k = 0; k < minus->nodes.size(); ++k)
-          for (int i = 0; i < dim; ++i) jump[i] -= minus->weights[k] * u[dim * minus->nodes[k] + i];
+      try {
+        auto plus = interpolation_at(cut.vertices[v] + delta * normal);
+        auto minus = interpolation_at(cut.vertices[v] - delta * normal);
+        if (plus && minus) {  // outside the body: no opening
+          for (std::size_t k = 0; k < plus->nodes.size(); ++k)
+            for (int i = 0; i < dim; ++i) jump[i] += plus->weights[k] * u[dim * plus->nodes[k] + i];
+          for (std::size_t k = 0; k < minus->nodes.size(); ++k)
+            for (int i = 0; i < dim; ++i) jump[i] -= minus->weights[k] * u[dim * minus->nodes[k] + i];
+        }
+      } catch (const Error&) {
+        // Output only: a vertex where too few nodes see either side shows NaN, not a stopped run.
+        jump = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());
       }
       out.points.push_back(cut.vertices[v]);
       opening.values.insert(opening.values.end(), {jump.x(), jump.y(), jump.z()});
