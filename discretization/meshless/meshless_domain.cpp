@@ -262,12 +262,13 @@ void MeshlessDomain::cut_snapshot(const Vector& u, BodySnapshot& out) const {
       try {
         auto plus = interpolation_at(cut.vertices[v] + delta * normal);
         auto minus = interpolation_at(cut.vertices[v] - delta * normal);
-        if (plus && minus) {  // outside the body: no opening
-          for (std::size_t k = 0; k < plus->nodes.size(); ++k)
-            for (int i = 0; i < dim; ++i) jump[i] += plus->weights[k] * u[dim * plus->nodes[k] + i];
-          for (std::size_t k = 0; k < minus->nodes.size(); ++k)
-            for (int i = 0; i < dim; ++i) jump[i] -= minus->weights[k] * u[dim * minus->nodes[k] + i];
-        }
+        auto value = [&](const PointInterpolation& p) {
+          Vec3 x = Vec3::Zero();
+          for (std::size_t k = 0; k < p.nodes.size(); ++k)
+            for (int i = 0; i < dim; ++i) x[i] += p.weights[k] * u[dim * p.nodes[k] + i];
+          return x;
+        };
+        if (plus && minus) jump = value(*plus) - value(*minus);  // outside the body: no opening
       } catch (const Error&) {
         // Output only: a vertex where too few nodes see either side shows NaN, not a stopped run.
         jump = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());

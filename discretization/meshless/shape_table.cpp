@@ -105,17 +105,6 @@ void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis,
             &enrichment, what, context, remedy);
 }
 
-std::vector<Index> rows_touching(const ShapeTable& table, std::span<const char> node_flag) {
-  std::vector<Index> rows;
-  for (Index p = 0; p < table.point_count(); ++p)
-    for (Index I : table.neighbours.of(p))
-      if (node_flag[I]) {
-        rows.push_back(p);
-        break;
-      }
-  return rows;
-}
-
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
   const int dim = table.dimension;
   auto near = table.neighbours.of(point);

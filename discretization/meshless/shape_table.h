@@ -39,8 +39,6 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
 void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
                         std::span<const Index> rows, const WeightEnrichment& enrichment, const std::string& what,
                         const std::string& context, const std::string& remedy);
-/// The rows (increasing) with a neighbour flagged in `node_flag`: a scan of the whole table.
-std::vector<Index> rows_touching(const ShapeTable& table, std::span<const char> node_flag);
 
 /// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);
