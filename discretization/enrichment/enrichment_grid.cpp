@@ -35,20 +35,22 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
              points, " points around the cut (padding ", padding, " m, twice the largest support radius); expected at most ",
              max_points, ": a larger spacing");
   for (int a = 0; a < dim_; ++a) count_[a] = static_cast<Index>(per_axis[a]);
-  const Index total = static_cast<Index>(points);
   const Index columns = dim_ == 2 ? count_[0] : count_[0] * count_[1];
-  const Index along = count_[dim_ - 1];
   columns_.resize(columns);
-  phi_.resize(total);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < columns; ++c) columns_[c] = column_at(column_point(c));
+}
+
+std::vector<double> EnrichmentGrid::lattice_phi() const {
+  const Index columns = static_cast<Index>(columns_.size()), along = count_[dim_ - 1];
+  std::vector<double> phi(static_cast<std::size_t>(columns) * along);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < columns; ++c) {
     const Vec3 base = column_point(c);
-    columns_[c] = column_at(base);
-    for (Index k = 0; k < along; ++k) {
-      const Index p = c + columns * k;
-      phi_[p] = phi_in(columns_[c], base + (low_[dim_ - 1] + k * spacing_) * axes_[dim_ - 1]).value;
-    }
+    for (Index k = 0; k < along; ++k)
+      phi[c + columns * k] = phi_in(columns_[c], base + (low_[dim_ - 1] + k * spacing_) * axes_[dim_ - 1]).value;
   }
+  return phi;
 }
 
 Vec3 EnrichmentGrid::coordinates(const Vec3& x) const {

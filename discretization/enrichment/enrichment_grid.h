@@ -12,9 +12,9 @@
 // around the point, the region of the nearest column, s exact from that
 // region's piece, so the jump across the faces stays sharp and only the
 // smooth part around the tips (and the region boundaries at kinks, within
-// half a spacing) is approximated. It stores phi at every lattice point (for
-// ParaView) and tells which columns changed when the cut grew: the nodes
-// whose support reaches none of them keep their enriched weight.
+// half a spacing) is approximated. It gives phi at every lattice point (for
+// ParaView, computed on request) and tells which columns changed when the cut
+// grew: the nodes whose support reaches none of them keep their enriched weight.
 #include <array>
 #include <vector>
 
@@ -50,11 +50,11 @@ class EnrichmentGrid {
   bool reaches(const std::vector<char>& columns, const Vec3& x, double radius) const;
 
   /// The lattice for output: origin, axes (unit, world frame), points per axis
-  /// (1 on unused axes), phi per point with axis 0 fastest.
+  /// (1 on unused axes), phi per point with axis 0 fastest (computed here).
   Vec3 lattice_origin() const;
   const std::array<Vec3, 3>& lattice_axes() const { return axes_; }
   const std::array<Index, 3>& lattice_count() const { return count_; }
-  const std::vector<double>& lattice_phi() const { return phi_; }
+  std::vector<double> lattice_phi() const;
 
  private:
   struct Column {
@@ -81,7 +81,6 @@ class EnrichmentGrid {
   Vec3 low_ = Vec3::Zero();     // lattice corner in lattice coordinates
   std::array<Index, 3> count_{1, 1, 1};
   std::vector<Column> columns_; // axis 0 fastest (3D: then axis 1)
-  std::vector<double> phi_;     // per point, for output
 };
 
 }  // namespace kerf
