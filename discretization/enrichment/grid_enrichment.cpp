@@ -11,8 +11,8 @@ GridEnrichment::GridEnrichment(const CutSurface& cut, Index pieces, double spaci
       spacing_(spacing),
       padding_(2.0 * (support.empty() ? 0.0 : *std::max_element(support.begin(), support.end()))),
       lookup_(lookup),
-      nodes_(nodes.begin(), nodes.end()),
-      support_(support.begin(), support.end()),
+      nodes_(nodes),
+      support_(support),
       enriched_(nodes.size(), 0),
       side_(nodes.size(), 1) {
   grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_);

@@ -15,7 +15,7 @@ namespace kerf {
 class GridEnrichment final : public WeightEnrichment {
  public:
   /// The cut's first `pieces` pieces (> 0); `reached`: the nodes whose support
-  /// reaches them. Lattice spacing in m; the lattice reaches twice the largest
+  /// reaches them. `nodes` and `support` are viewed, not copied: they must outlive this. Lattice spacing in m; the lattice reaches twice the largest
   /// support radius beyond the cut (as far as a covered point can be).
   GridEnrichment(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup, std::span<const Vec3> nodes,
                  std::span<const double> support, std::span<const Index> reached);
@@ -43,8 +43,8 @@ class GridEnrichment final : public WeightEnrichment {
   double spacing_, padding_;
   GridLookup lookup_;
   std::unique_ptr<EnrichmentGrid> grid_;
-  std::vector<Vec3> nodes_;
-  std::vector<double> support_;
+  std::span<const Vec3> nodes_;
+  std::span<const double> support_;
   std::vector<char> enriched_;
   std::vector<Index> enriched_list_;
   std::vector<signed char> side_;  // sigma_I

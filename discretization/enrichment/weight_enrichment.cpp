@@ -20,13 +20,13 @@ std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<c
   return reached;
 }
 
-CutEnrichment::CutEnrichment(std::span<const Cut> cuts, std::span<const CutSurface> surfaces,
+CutEnrichment::CutEnrichment(std::span<const Cut> cuts, std::vector<CutSurface> surfaces,
                              std::span<const Vec3> nodes, std::span<const double> support, const PointIndex& index,
                              double time)
     : nodes_(nodes.begin(), nodes.end()), support_(support.begin(), support.end()), index_(index) {
   KERF_CHECK(cuts.size() == surfaces.size(), "one surface per cut expected");
   if (!support.empty()) largest_support_ = *std::max_element(support.begin(), support.end());
-  for (std::size_t c = 0; c < cuts.size(); ++c) parts_.push_back(Part{cuts[c], surfaces[c], 0, nullptr});
+  for (std::size_t c = 0; c < cuts.size(); ++c) parts_.push_back(Part{cuts[c], std::move(surfaces[c]), 0, nullptr});
   advance_to(time);
 }
 

@@ -48,9 +48,9 @@ std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<c
 /// other rules (baselines) are rebuilt and report the nodes the new pieces reach.
 class CutEnrichment final : public WeightEnrichment {
  public:
-  /// `cuts` and `surfaces` are parallel; nodes and support radii in metres;
+  /// `cuts` and `surfaces` are parallel (the surfaces are kept here); nodes and support radii in metres;
   /// `index` is a k-d tree over the nodes and must outlive this object.
-  CutEnrichment(std::span<const Cut> cuts, std::span<const CutSurface> surfaces, std::span<const Vec3> nodes,
+  CutEnrichment(std::span<const Cut> cuts, std::vector<CutSurface> surfaces, std::span<const Vec3> nodes,
                 std::span<const double> support, const PointIndex& index, double time);
   ~CutEnrichment() override;
 
@@ -67,6 +67,8 @@ class CutEnrichment final : public WeightEnrichment {
   const EnrichmentGrid* grid(Index cut) const;
   /// Pieces of cut c present now.
   Index pieces(Index cut) const { return parts_[cut].pieces; }
+  Index cut_count() const { return static_cast<Index>(parts_.size()); }
+  const CutSurface& surface(Index cut) const { return parts_[cut].surface; }
 
  private:
   struct Part {

@@ -44,10 +44,12 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
     background_on_boundary_ = boundary_node_flags(*background_, facets_);
   }
   index_ = std::make_unique<PointIndex>(nodes_.positions);
-  for (const Cut& c : scene.cuts) cuts_.push_back(cut_surface(dimension(), c.vertices, c.times, c.where.describe()));
-  if (!scene.cuts.empty())
-    enrichment_ = std::make_unique<CutEnrichment>(scene.cuts, cuts_, nodes_.positions, nodes_.support, *index_, 0.0);
-  const bool growing = std::any_of(cuts_.begin(), cuts_.end(), [](const CutSurface& c) { return c.appears.back() > 0.0; });
+  std::vector<CutSurface> cuts;
+  for (const Cut& c : scene.cuts) cuts.push_back(cut_surface(dimension(), c.vertices, c.times, c.where.describe()));
+  const bool growing = std::any_of(cuts.begin(), cuts.end(), [](const CutSurface& c) { return c.appears.back() > 0.0; });
+  if (!cuts.empty())
+    enrichment_ =
+        std::make_unique<CutEnrichment>(scene.cuts, std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
   if (growing && background_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)
@@ -247,9 +249,9 @@ void MeshlessDomain::cut_snapshot(const Vector& u, BodySnapshot& out) const {
   OutputField appears{"appears", 1, {}}, which{"cut", 1, {}};
   // Just off the faces, on either side: the displacement jump across the cut.
   const double delta = 1e-6 * domain_size_;
-  for (std::size_t c = 0; c < cuts_.size(); ++c) {
-    const CutSurface& cut = cuts_[c];
-    const Index pieces = enrichment_->pieces(static_cast<Index>(c));
+  for (Index c = 0; c < enrichment_->cut_count(); ++c) {
+    const CutSurface& cut = enrichment_->surface(c);
+    const Index pieces = enrichment_->pieces(c);
     if (pieces == 0) continue;
     const Index first_point = static_cast<Index>(out.points.size());
     const Index vertices = pieces + corners - 1;
@@ -296,8 +298,8 @@ void MeshlessDomain::cut_snapshot(const Vector& u, BodySnapshot& out) const {
 std::vector<LatticeSnapshot> MeshlessDomain::enrichment_lattices() const {
   std::vector<LatticeSnapshot> out;
   if (!enrichment_) return out;
-  for (std::size_t c = 0; c < cuts_.size(); ++c) {
-    const EnrichmentGrid* grid = enrichment_->grid(static_cast<Index>(c));
+  for (Index c = 0; c < enrichment_->cut_count(); ++c) {
+    const EnrichmentGrid* grid = enrichment_->grid(c);
     if (!grid) continue;
     LatticeSnapshot l;
     l.name = "phi_cut" + std::to_string(c);

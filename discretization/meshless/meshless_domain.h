@@ -43,8 +43,6 @@ class MeshlessDomain {
   const Mesh& background() const;
   const BoundaryFacets& facets() const { return facets_; }
 
-  /// The scene's cuts, checked, in scene order.
-  const std::vector<CutSurface>& cuts() const { return cuts_; }
   /// The cuts' weight enrichment of the nodes (null without a cut present).
   const CutEnrichment* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
   /// Brings the cuts to time t. Returns the nodes whose enriched weight
@@ -93,8 +91,7 @@ class MeshlessDomain {
   BoundaryFacets facets_;
   std::vector<char> background_on_boundary_;
   std::unique_ptr<PointIndex> index_;
-  std::vector<CutSurface> cuts_;
-  std::unique_ptr<CutEnrichment> enrichment_;
+  std::unique_ptr<CutEnrichment> enrichment_;  // owns the scene's cuts (null without any)
   std::unique_ptr<PointIndex> load_points_;  // boundary-load quadrature points (growing cuts only)
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors
