@@ -45,9 +45,7 @@ PointIntegration make_points(const MeshlessDomain& domain, int order) {
 }  // namespace
 
 EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain)
-    : domain_(std::move(domain)),
-      law_(scene.material),
-      density_(scene.material.density),
+    : MeshlessBody(scene, std::move(domain)),
       nitsche_(scene.discretization.meshless.essential == EssentialMethod::nitsche),
       points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
   const int dim = domain_.dimension();

@@ -12,14 +12,13 @@
 // holds. `point` selections constrain the nearest node's parameter.
 #include <vector>
 
-#include "discretization/discrete_body.h"
-#include "discretization/meshless/meshless_domain.h"
+#include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/point_integration.h"
 #include "problem/material.h"
 
 namespace kerf {
 
-class EfgBody final : public DiscreteBody {
+class EfgBody final : public MeshlessBody {
  public:
   /// alpha = factor (lambda + 2 mu) / h, h the local node spacing.
   static constexpr double nitsche_factor = 10.0;
@@ -27,35 +26,18 @@ class EfgBody final : public DiscreteBody {
 
   EfgBody(const Scene& scene, MeshlessDomain domain);
 
-  int dofs_per_node() const override { return domain_.dimension(); }
-  Index node_count() const override { return domain_.nodes().size(); }
-  Vec3 node_position(Index node) const override { return domain_.nodes().positions[node]; }
   Index element_count() const override { return points_.point_count(); }
-  double mean_neighbors() const override { return domain_.mean_neighbors(); }
 
   void visit_couplings(const CouplingVisitor& visit) const override;
   /// Not reentrant: two calls on one body must not run at the same time (per-point scratch).
   void internal_force(const Vector& u, Vector& f) const override;
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
   double strain_energy(const Vector& u) const override;
-  bool is_linear() const override { return law_.is_linear(); }
 
   Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override;
-  void external_force(double t, Vector& f) const override { f = load_; }
-  std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
-  std::optional<double> critical_time_step() const override { return std::nullopt; }
 
-  std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
-  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
-    return domain_.interpolation_at(x);
-  }
-  void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
-  void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
-  std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
   Vec3 weak_reaction(const Vector& u, const Selection& selection) const override;
-
-  const MeshlessDomain& domain() const { return domain_; }
 
  private:
   /// Boundary quadrature points of one weakly imposed condition.
@@ -77,14 +59,9 @@ class EfgBody final : public DiscreteBody {
   /// rho phi_a phi_b w summed over the integration points, per point (scalar per node pair).
   Eigen::MatrixXd point_mass(Index p) const;
 
-  MeshlessDomain domain_;
-  MaterialLaw law_;
-  double density_;
   bool nitsche_;
   PointIntegration points_;
   std::vector<WeakConstraint> constraints_;
-  Vector load_;
-  std::vector<DirichletDof> dirichlet_;
   mutable std::vector<Mat3> stress_;
 };
 

@@ -41,9 +41,7 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
 }  // namespace
 
 NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
-    : domain_(std::move(domain)),
-      law_(scene.material),
-      density_(scene.material.density),
+    : MeshlessBody(scene, std::move(domain)),
       stabilized_(scene.discretization.meshless.stabilization),
       scene_(scene) {
   const NodeSet& nodes = domain_.nodes();

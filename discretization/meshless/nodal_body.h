@@ -10,8 +10,7 @@
 // any size are untouched) and is quadratic in u.
 #include <vector>
 
-#include "discretization/discrete_body.h"
-#include "discretization/meshless/meshless_domain.h"
+#include "discretization/meshless/meshless_body.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -24,42 +23,25 @@ struct StabilizationPairs {
   std::vector<double> stiffness, lever, lever_sum, lever_moment;
 };
 
-class NodalBody final : public DiscreteBody {
+class NodalBody final : public MeshlessBody {
  public:
   /// The default c of the stabilisation (meshless.stabilization: true).
   static constexpr double default_stabilization = 0.1;
 
   NodalBody(const Scene& scene, MeshlessDomain domain);
 
-  int dofs_per_node() const override { return domain_.dimension(); }
-  Index node_count() const override { return domain_.nodes().size(); }
-  Vec3 node_position(Index node) const override { return domain_.nodes().positions[node]; }
   Index element_count() const override { return node_count(); }
-  double mean_neighbors() const override { return domain_.mean_neighbors(); }
 
   void visit_couplings(const CouplingVisitor& visit) const override;
   /// Not reentrant: two calls on one body must not run at the same time (per-thread scratch).
   void internal_force(const Vector& u, Vector& f) const override;
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
   double strain_energy(const Vector& u) const override;
-  bool is_linear() const override { return law_.is_linear(); }
 
   Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override;
-  void external_force(double t, Vector& f) const override { f = load_; }
-  std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
-  std::optional<double> critical_time_step() const override { return std::nullopt; }
   std::optional<CutUpdate> advance_cuts(double t) override;
 
-  std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
-  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
-    return domain_.interpolation_at(x);
-  }
-  void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
-  void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
-  std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
-
-  const MeshlessDomain& domain() const { return domain_; }
   /// Stabilisation energy alone (J): zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;
 
@@ -74,12 +56,7 @@ class NodalBody final : public DiscreteBody {
   /// The stabilisation's stiffness on point I's neighbours (scalar per node pair) into `block`.
   void add_stabilization_block(Index I, std::vector<double>& block) const;
 
-  MeshlessDomain domain_;
-  MaterialLaw law_;
-  double density_;
   bool stabilized_;
-  Vector load_;
-  std::vector<DirichletDof> dirichlet_;
   StabilizationPairs pairs_;  // empty without the stabilisation
   Scene scene_;               // the loads, integrated again when a growing cut reaches them
   Vector body_load_;          // gravity alone (N)

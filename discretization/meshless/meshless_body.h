@@ -1,0 +1,47 @@
+#pragma once
+// What the two meshless bodies (EFG, nodal integration) answer alike: nodes,
+// selections, point interpolation, ParaView snapshots and the cuts all come
+// from their MeshlessDomain; loads are dead (assembled once, f_ext = load_);
+// no cheap critical-step bound (the stepper's Lanczos bound is used).
+#include <vector>
+
+#include "discretization/discrete_body.h"
+#include "discretization/meshless/meshless_domain.h"
+#include "problem/material.h"
+
+namespace kerf {
+
+class MeshlessBody : public DiscreteBody {
+ public:
+  int dofs_per_node() const override { return domain_.dimension(); }
+  Index node_count() const override { return domain_.nodes().size(); }
+  Vec3 node_position(Index node) const override { return domain_.nodes().positions[node]; }
+  double mean_neighbors() const override { return domain_.mean_neighbors(); }
+  bool is_linear() const override { return law_.is_linear(); }
+
+  void external_force(double, Vector& f) const override { f = load_; }
+  std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
+  std::optional<double> critical_time_step() const override { return std::nullopt; }
+
+  std::vector<Index> select_nodes(const Selection& s) const override { return domain_.select_nodes(s); }
+  std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override {
+    return domain_.interpolation_at(x);
+  }
+  void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
+  void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
+  std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
+
+  const MeshlessDomain& domain() const { return domain_; }
+
+ protected:
+  MeshlessBody(const Scene& scene, MeshlessDomain domain)
+      : domain_(std::move(domain)), law_(scene.material), density_(scene.material.density) {}
+
+  MeshlessDomain domain_;
+  MaterialLaw law_;
+  double density_;  // kg/m^3
+  Vector load_;     // dead loads (N)
+  std::vector<DirichletDof> dirichlet_;
+};
+
+}  // namespace kerf
