@@ -32,14 +32,18 @@ void refuse_unrunnable(const Scene& scene) {
   KERF_CHECK(scene.contact.empty(), scene.contact.front().where.describe(),
              ": contact is not implemented yet (it arrives with the studies, issue 5)");
   for (const Cut& cut : scene.cuts) {
-    KERF_CHECK(scene.discretization.method != Method::fem, cut.where.describe(),
-               ": cuts in FEM (fem: remesh | remove) are not built yet; expected discretization.method efg or nodal");
+    const bool fem = scene.discretization.method == Method::fem;
+    KERF_CHECK(!fem || cut.fem != FemCut::remesh || scene.box, cut.where.describe(),
+               ": key 'fem': value remesh: FEM remeshes around a cut only in a box domain (domain.mesh is read "
+               "as it is); expected fem: remove, or domain.box");
     cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
     for (std::size_t i = 0; i < cut.times.size(); ++i)
       KERF_CHECK(cut.times[i] <= 0.0 || scene.discretization.method == Method::nodal, cut.where.describe(),
-                 ": key 'times': value ", cut.times[i], " at vertex ", i,
-                 ": a growing cut in efg is not built yet (the Gauss points, loads and weak constraints would "
-                 "need updating); expected discretization.method nodal, or every vertex present at t = 0");
+                 ": key 'times': value ", cut.times[i], " at vertex ", i, ": a growing cut in ",
+                 fem ? "FEM (remeshing or removing cells during the run, the state mapped over) is"
+                     : "efg is",
+                 " not built yet (the Gauss points, loads and weak constraints would need updating); expected "
+                 "discretization.method nodal, or every vertex present at t = 0");
   }
 }
 

@@ -7,16 +7,20 @@
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
 #include "geometry/box_mesher.h"
+#include "geometry/cut_cell_removal.h"
+#include "geometry/cut_surface.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/msh_reader.h"
 
 namespace kerf {
 namespace {
 
-/// The mesh FEM uses: the scene's mesh file, or gmsh on the box at `size`.
-Mesh make_mesh(const Scene& scene, int order, double size) {
+/// The mesh FEM uses: the scene's mesh file, or gmsh on the box at `size`,
+/// conforming to and opened along `cuts`.
+Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
   if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
   BoxMeshRequest request;
+  request.cuts = std::move(cuts);
   request.dimension = scene.dimension;
   request.order = order;
   request.min = scene.box->min;
@@ -63,8 +67,19 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
   ScopedTimer timer(report.phases, "setup");
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, report);
-  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size);
+  // The scene's cuts as they stand at t = 0: `remesh` ones shape the mesh, `remove` ones delete cells.
+  std::vector<CutPiece> remeshed, removed;
+  for (const Cut& c : scene.cuts) {
+    const CutSurface cut = cut_surface(scene.dimension, c.vertices, c.times, c.where.describe());
+    std::vector<CutPiece>& pieces = c.fem == FemCut::remesh ? remeshed : removed;
+    pieces.insert(pieces.end(), cut.pieces.begin(), cut.pieces.begin() + cut.pieces_at(0.0));
+  }
+  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, std::move(remeshed));
   report.add_stage("mesh");
+  if (!removed.empty()) {
+    report.counters["cut_removed_cells"] += remove_crossed_cells(mesh, removed);
+    report.add_stage("cut cells removed");
+  }
   return std::make_unique<FemBody>(scene, std::move(mesh));
 }
 

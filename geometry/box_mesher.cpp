@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/thread_scope.h"
+#include "geometry/gmsh_cuts.h"
 #include "geometry/gmsh_session.h"
 
 namespace kerf {
@@ -14,11 +15,18 @@ Mesh mesh_box(const BoxMeshRequest& r) {
   gmsh::clear();
   gmsh::model::add("kerf_box");
   Vec3 extent = r.max - r.min;
-  if (r.dimension == 3)
-    gmsh::model::occ::addBox(r.min.x(), r.min.y(), r.min.z(), extent.x(), extent.y(), extent.z());
+  const int body = r.dimension == 3
+                       ? gmsh::model::occ::addBox(r.min.x(), r.min.y(), r.min.z(), extent.x(), extent.y(), extent.z())
+                       : gmsh::model::occ::addRectangle(r.min.x(), r.min.y(), 0.0, extent.x(), extent.y());
+  CutGroups cuts;
+  if (r.cuts.empty())
+    gmsh::model::occ::synchronize();
   else
-    gmsh::model::occ::addRectangle(r.min.x(), r.min.y(), 0.0, extent.x(), extent.y());
-  gmsh::model::occ::synchronize();
+    try {
+      cuts = embed_cuts(r.dimension, body, r.cuts, r.min, r.max);
+    } catch (const std::exception& e) {
+      throw Error(std::string("gmsh failed to embed the cuts in the box: ") + e.what());
+    }
 
   // Size from fields only: the global size, and each refine box below it.
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
@@ -49,6 +57,7 @@ Mesh mesh_box(const BoxMeshRequest& r) {
   try {
     gmsh::model::mesh::generate(r.dimension);
     if (r.order == 2) gmsh::model::mesh::setOrder(2);
+    open_cuts(r.dimension, cuts);
   } catch (const std::exception& e) {
     throw Error(std::string("gmsh failed to mesh the box: ") + e.what());
   }

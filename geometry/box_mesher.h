@@ -1,8 +1,10 @@
 #pragma once
 // Meshes an axis-aligned box with gmsh: tetrahedra in 3D, triangles in 2D
-// (the x-y rectangle), linear or quadratic, with finer size in refine boxes.
+// (the x-y rectangle), linear or quadratic, with finer size in refine boxes,
+// conforming to cuts whose nodes are duplicated.
 #include <vector>
 
+#include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
 
 namespace kerf {
@@ -18,6 +20,7 @@ struct BoxMeshRequest {
   Vec3 min = Vec3::Zero(), max = Vec3::Ones();
   double size = 0.1;             // target edge length (m)
   std::vector<SizeBox> refine;   // finer regions
+  std::vector<CutPiece> cuts;    // the mesh conforms to them and opens along them (gmsh_cuts.h)
 };
 
 Mesh mesh_box(const BoxMeshRequest& request);
