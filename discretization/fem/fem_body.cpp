@@ -54,6 +54,7 @@ FemBody::FemBody(const Scene& scene, Mesh mesh)
       facets_(boundary_facets(mesh_)),
       schedule_(schedule_cells(mesh_, omp_get_max_threads())),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
+      locator_(mesh_),
       law_(scene.material),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
@@ -348,7 +349,7 @@ std::vector<Index> FemBody::select_nodes(const Selection& selection) const {
 }
 
 std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const {
-  auto where = locate_point(mesh_, x, 1e-6 * domain_size_);
+  auto where = locator_.locate(mesh_, x, 1e-6 * domain_size_);
   if (!where) return std::nullopt;
   PointInterpolation p;
   p.weights.resize(npc_);

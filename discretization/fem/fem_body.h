@@ -10,6 +10,7 @@
 #include "geometry/boundary_facets.h"
 #include "geometry/cell_schedule.h"
 #include "geometry/mesh.h"
+#include "geometry/point_location.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -58,6 +59,7 @@ class FemBody final : public DiscreteBody {
   BoundaryFacets facets_;
   CellSchedule schedule_;      // ranges of one phase share no node: parallel without conflicts
   std::vector<char> on_boundary_;
+  CellLocator locator_;        // interpolation_at: probes, and a state carried to a new mesh
   MaterialLaw law_;
   double density_;
   double domain_size_;

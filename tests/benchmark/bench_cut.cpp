@@ -6,7 +6,13 @@
 // frame, the nodes whose weight changed found, their shape functions and
 // stabilisation pairs recomputed. Arguments: the grid lookup (0 exact,
 // 1 interpolated), the lattice spacing in tenths of the node spacing.
-//   build/tests/kerf_benchmarks --benchmark_filter=CutUpdate
+// FemRemeshUpdate times the `fem: remesh` baseline of the same update on the
+// matching tet4 mesh (element size = node spacing): gmsh meshes the block with
+// the strip so far embedded and opens it (Crack plugin), the FEM body is
+// built, and the displacement is carried to the new nodes by interpolation
+// in the old mesh.
+//   build/tests/kerf_benchmarks --benchmark_filter='CutUpdate|FemRemeshUpdate'
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -23,20 +29,25 @@ namespace {
 constexpr double node_spacing = 0.00588;
 constexpr int blade_positions = 23;
 
-Scene cut_block(bool interpolated, double grid_spacing) {
+/// The block and its blade; with `triangles` > 0, FEM (tet4) with the first
+/// `triangles` of the strip present from the start.
+Scene cut_block(bool interpolated, double grid_spacing, int triangles = 0) {
   std::ostringstream strip, times;
-  for (int k = 0; k < blade_positions; ++k) {
+  const int vertices = triangles > 0 ? triangles + 2 : 2 * blade_positions;
+  for (int v = 0; v < vertices; ++v) {
+    const int k = v / 2;  // blade position
     const double x = -0.005 + 0.005 * k;
-    strip << (k ? ", " : "") << "[" << x << ", 0.0503, 0.03], [" << x << ", 0.0503, 0.11]";
-    times << (k ? ", " : "") << std::max(0, 2 * k - 1) << ", " << 2 * k;
+    strip << (v ? ", " : "") << "[" << x << ", 0.0503, " << (v % 2 ? 0.11 : 0.03) << "]";
+    times << (v ? ", " : "") << (v % 2 ? 2 * k : std::max(0, 2 * k - 1));
   }
   std::ostringstream yaml;
   yaml << R"(
 name: cut_block
 domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
 material: {young: 3000, poisson: 0.3, density: 1000}
-discretization: {method: nodal, meshless: {spacing: )"
-       << node_spacing << R"(, support: 2.3}}
+discretization: {method: )"
+       << (triangles > 0 ? "fem" : "nodal") << ", fem: {element: tet4, size: " << node_spacing
+       << "}, meshless: {spacing: " << node_spacing << R"(, support: 2.3}}
 boundary:
   - select: {plane: {axis: z, at: 0.0}}
     fix: [x, y, z]
@@ -49,7 +60,9 @@ cuts:
 solve: {dt: 0.001, duration: 10.0}
 output: {vtk: false}
 )";
-  return parse_scene(yaml.str(), "benchmark", ".");
+  Scene scene = parse_scene(yaml.str(), "benchmark", ".");
+  if (triangles > 0) std::fill(scene.cuts[0].times.begin(), scene.cuts[0].times.end(), 0.0);  // all present
+  return scene;
 }
 
 void BM_CutUpdate(benchmark::State& state) {
@@ -79,6 +92,45 @@ void BM_CutUpdate(benchmark::State& state) {
   state.counters["points_updated_mean"] = points / seconds.size();
   state.counters["nodes"] = body->node_count();
 }
+
+void BM_FemRemeshUpdate(benchmark::State& state) {
+  RunReport report;
+  const int last = 2 * blade_positions - 2;
+  std::unique_ptr<DiscreteBody> body = make_body(cut_block(false, node_spacing, 1), report);
+  int next = 2;
+  std::vector<double> remesh, map;
+  for (auto _ : state) {
+    if (next > last) next = 2;
+    state.PauseTiming();
+    const Scene scene = cut_block(false, node_spacing, next++);
+    Vector u = Vector::Zero(body->dof_count());  // a displacement to carry over: a shear along x
+    for (Index n = 0; n < body->node_count(); ++n) u[3 * n] = 1e-3 * body->node_position(n).z();
+    state.ResumeTiming();
+    const double start = now_seconds();
+    std::unique_ptr<DiscreteBody> next_body = make_body(scene, report);
+    const double meshed = now_seconds();
+    Vector mapped = Vector::Zero(next_body->dof_count());
+    for (Index n = 0; n < next_body->node_count(); ++n) {
+      const std::optional<PointInterpolation> at = body->interpolation_at(next_body->node_position(n));
+      if (!at) continue;
+      for (std::size_t k = 0; k < at->nodes.size(); ++k)
+        for (int c = 0; c < 3; ++c) mapped[3 * n + c] += at->weights[k] * u[3 * at->nodes[k] + c];
+    }
+    const double done = now_seconds();
+    benchmark::DoNotOptimize(mapped.data());
+    remesh.push_back(meshed - start);
+    map.push_back(done - meshed);
+    body = std::move(next_body);
+  }
+  std::sort(remesh.begin(), remesh.end());
+  std::sort(map.begin(), map.end());
+  state.counters["median_remesh_ms"] = 1e3 * remesh[remesh.size() / 2];
+  state.counters["median_map_ms"] = 1e3 * map[map.size() / 2];
+  state.counters["nodes"] = body->node_count();
+  state.counters["cells"] = body->element_count();
+}
+
+BENCHMARK(BM_FemRemeshUpdate)->Iterations(44)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_CutUpdate)->Args({0, 5})->Args({1, 5})->Args({0, 10})->Args({1, 10})->Iterations(88)->Unit(benchmark::kMillisecond);
 

@@ -2,6 +2,8 @@
 // locality ordering, point location, refine boxes, and gmsh leaving kerf's
 // OpenMP thread count alone.
 #include <gtest/gtest.h>
+
+#include <random>
 #include <omp.h>
 
 #include <set>
@@ -138,6 +140,24 @@ TEST(Geometry, PointLocationFindsTheCellAndItsReferenceCoordinates) {
   }
   EXPECT_FALSE(locate_point(mesh, Vec3(1.1, 0.5, 0.5), 1e-3));
   EXPECT_TRUE(locate_point(mesh, Vec3(1.0005, 0.5, 0.5), 1e-3));
+}
+
+TEST(Geometry, CellLocatorGivesTheSameCellsAsTheFullSearch) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> coordinate(-0.05, 1.05);
+  for (int dim : {2, 3}) {
+    Mesh mesh = testing::unit_box_mesh(dim, 1, 0.15);
+    CellLocator locator(mesh);
+    for (int i = 0; i < 300; ++i) {
+      Vec3 x(coordinate(random), coordinate(random), dim == 3 ? coordinate(random) : 0.0);
+      if (i < 20) x = mesh.nodes[i];  // on shared corners: the lowest-numbered cell, both ways
+      auto full = locate_point(mesh, x, 0.02), binned = locator.locate(mesh, x, 0.02);
+      ASSERT_EQ(full.has_value(), binned.has_value()) << x.transpose();
+      if (!full) continue;
+      EXPECT_EQ(full->cell, binned->cell) << x.transpose();
+      EXPECT_LT((full->local - binned->local).norm(), 1e-12);
+    }
+  }
 }
 
 TEST(Geometry, RefineBoxesMakeTheMeshFinerWhereAsked) {
