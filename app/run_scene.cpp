@@ -40,10 +40,9 @@ void refuse_unrunnable(const Scene& scene) {
     for (std::size_t i = 0; i < cut.times.size(); ++i)
       KERF_CHECK(cut.times[i] <= 0.0 || scene.discretization.method == Method::nodal, cut.where.describe(),
                  ": key 'times': value ", cut.times[i], " at vertex ", i, ": a growing cut in ",
-                 fem ? "FEM (remeshing or removing cells during the run, the state mapped over) is"
-                     : "efg is",
-                 " not built yet (the Gauss points, loads and weak constraints would need updating); expected "
-                 "discretization.method nodal, or every vertex present at t = 0");
+                 fem ? "FEM (remeshing or removing cells during the run, the state mapped over)"
+                     : "efg (the Gauss points, loads and weak constraints updated)",
+                 " is not built yet; expected discretization.method nodal, or every vertex present at t = 0");
   }
 }
 
