@@ -9,7 +9,6 @@
 #include <tuple>
 #include <utility>
 
-#include "core/check.h"
 
 namespace kerf {
 namespace {
