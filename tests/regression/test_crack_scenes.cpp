@@ -125,10 +125,11 @@ TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
     for (std::string rule : {"grid", "grid-interpolated", "multiplicative", "visibility", "diffraction"}) {
       json s = run_ok("scenes/crack_kinked_2d.yaml", rule_overrides(method, rule), "kinked_" + method + "_" + rule);
       const double error = relative_error("kinked " + method + " " + rule, opening(s), reference);
-      if (rule.starts_with("grid"))
+      if (rule.starts_with("grid")) {
         // efg meets the 3%; nodal integration does not (6-7% under
         // refinement, on the straight crack too): the bound is what it measures.
         EXPECT_LT(error, method == "efg" ? 0.03 : 0.06) << method << " " << rule;
+      }
     }
   json remesh = run_ok("scenes/crack_kinked_2d.yaml",
                        {"discretization.method=fem", "discretization.fem.element=tri6", "discretization.fem.size=0.001"},
