@@ -4,11 +4,11 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
-#include <map>
 
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
+#include "discretization/prescribed_dofs.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/point_location.h"
 #include "problem/selection.h"
@@ -305,23 +305,9 @@ void FemBody::build_loads(const Scene& scene) {
 }
 
 void FemBody::build_constraints(const Scene& scene) {
-  const int dim = mesh_.dimension;
-  std::map<Index, std::pair<double, const BoundaryCondition*>> prescribed;
-  for (const BoundaryCondition& bc : scene.boundary) {
-    if (!bc.is_dirichlet()) continue;
-    for (Index n : select_nodes(bc.select))
-      for (int i = 0; i < dim; ++i) {
-        if (!bc.fixed[i] && !bc.displacement[i]) continue;
-        double value = bc.fixed[i] ? 0.0 : *bc.displacement[i];
-        auto [it, inserted] = prescribed.try_emplace(dim * n + i, value, &bc);
-        KERF_CHECK(inserted || it->second.first == value, bc.where.describe(), ": component ", "xyz"[i],
-                   " of the node at [", mesh_.nodes[n].transpose(), "] is prescribed ", value,
-                   " here and ", it->second.first, " by ", it->second.second->where.describe(),
-                   "; expected one value");
-      }
-  }
-  dirichlet_.clear();
-  for (const auto& [dof, entry] : prescribed) dirichlet_.push_back({dof, entry.first});
+  dirichlet_ = prescribed_dofs(
+      scene, mesh_.dimension, [this](const Selection& s) { return select_nodes(s); }, mesh_.nodes,
+      [](const BoundaryCondition&) { return true; });
 }
 
 std::optional<double> FemBody::critical_time_step() const {

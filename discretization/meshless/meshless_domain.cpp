@@ -2,13 +2,13 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
 #include <sstream>
 
 #include "core/check.h"
 #include "discretization/enrichment/enrichment_grid.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/meshless/mls_shape.h"
+#include "discretization/prescribed_dofs.h"
 #include "geometry/neighbor_search.h"
 #include "geometry/point_location.h"
 #include "problem/selection.h"
@@ -177,23 +177,8 @@ BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, in
 
 std::vector<DirichletDof> MeshlessDomain::nodal_constraints(const Scene& scene,
                                                             bool (*take)(const BoundaryCondition&)) const {
-  const int dim = dimension();
-  std::map<Index, std::pair<double, const BoundaryCondition*>> prescribed;
-  for (const BoundaryCondition& bc : scene.boundary) {
-    if (!bc.is_dirichlet() || !take(bc)) continue;
-    for (Index n : select_nodes(bc.select))
-      for (int i = 0; i < dim; ++i) {
-        if (!bc.fixed[i] && !bc.displacement[i]) continue;
-        double value = bc.fixed[i] ? 0.0 : *bc.displacement[i];
-        auto [it, inserted] = prescribed.try_emplace(dim * n + i, value, &bc);
-        KERF_CHECK(inserted || it->second.first == value, bc.where.describe(), ": component ", "xyz"[i],
-                   " of the node at [", nodes_.positions[n].transpose(), "] is prescribed ", value, " here and ",
-                   it->second.first, " by ", it->second.second->where.describe(), "; expected one value");
-      }
-  }
-  std::vector<DirichletDof> out;
-  for (const auto& [dof, entry] : prescribed) out.push_back({dof, entry.first});
-  return out;
+  return prescribed_dofs(
+      scene, dimension(), [this](const Selection& s) { return select_nodes(s); }, nodes_.positions, take);
 }
 
 void MeshlessDomain::add_boundary_loads(const Scene& scene, Vector& load) const {
