@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 
 namespace kerf {
 namespace {
@@ -46,6 +47,16 @@ Index orient_cells(Mesh& mesh) {
     ++flipped;
   }
   return flipped;
+}
+
+std::vector<double> dual_cell_volumes(const Mesh& mesh) {
+  const int corners = mesh.dimension + 1;
+  std::vector<double> volume(mesh.nodes.size(), 0.0);
+  for (Index c = 0; c < mesh.cell_count(); ++c) {
+    const double share = std::abs(cell_measure(mesh, c)) / corners;
+    for (int a = 0; a < corners; ++a) volume[mesh.cell(c)[a]] += share;
+  }
+  return volume;
 }
 
 Mesh corner_mesh(const Mesh& mesh) {

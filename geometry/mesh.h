@@ -37,6 +37,10 @@ Index orient_cells(Mesh& mesh);
 /// Volume (3D) or area (2D) of the straight-sided cell c.
 double cell_measure(const Mesh& mesh, Index c);
 
+/// Each node's share of the straight-sided cells around it (1/corners of each),
+/// i.e. the measure of its barycentric dual cell; nodes of no cell get 0.
+std::vector<double> dual_cell_volumes(const Mesh& mesh);
+
 /// The straight-sided linear mesh on the corners of each cell: mid-edge nodes
 /// and nodes of no cell dropped, the others kept in their original order.
 Mesh corner_mesh(const Mesh& mesh);

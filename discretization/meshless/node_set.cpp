@@ -6,7 +6,7 @@
 
 #include "core/check.h"
 #include "geometry/boundary_facets.h"
-#include "geometry/delaunay_volumes.h"
+#include "geometry/delaunay_mesh.h"
 
 namespace kerf {
 namespace {
@@ -84,7 +84,8 @@ NodeSet lattice_nodes(int dim, const Box& box, double spacing, std::span<const R
   s.positions = std::move(positions);
   s.spacing = std::move(local);
   for (double h : s.spacing) s.support.push_back(support_factor * h);
-  s.volume = delaunay_nodal_volumes(s.positions, dim);
+  s.cells = delaunay_mesh(s.positions, dim);
+  s.volume = dual_cell_volumes(s.cells);
   for (const Vec3& p : s.positions) {
     bool boundary = false;
     for (int a = 0; a < dim; ++a)
@@ -101,15 +102,14 @@ NodeSet mesh_nodes(const Mesh& input, double support_factor) {
   NodeSet s;
   s.dimension = dim;
   s.positions = mesh.nodes;
+  s.cells = mesh;
+  s.volume = dual_cell_volumes(mesh);
   const Index count = s.size();
-  s.volume.assign(count, 0.0);
   std::vector<double> edge_sum(count, 0.0);
   std::vector<int> edge_count(count, 0);
   for (Index c = 0; c < mesh.cell_count(); ++c) {
     auto n = mesh.cell(c);
-    double share = std::abs(cell_measure(mesh, c)) / corners;
     for (int a = 0; a < corners; ++a) {
-      s.volume[n[a]] += share;
       for (int b = 0; b < corners; ++b) {
         if (a == b) continue;
         edge_sum[n[a]] += (mesh.nodes[n[a]] - mesh.nodes[n[b]]).norm();

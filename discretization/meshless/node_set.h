@@ -1,8 +1,9 @@
 #pragma once
 // Meshless nodes: a lattice filling a box (finer inside `refine` boxes) or the
 // vertices of a mesh, each with its support radius (a multiple of the local
-// spacing), its nodal volume (integration weight of nodal integration) and a
-// flag for nodes on the domain's boundary (for selections).
+// spacing), its nodal volume (integration weight of nodal integration), a
+// flag for nodes on the domain's boundary (for selections), and the simplices
+// on the nodes whose barycentric dual cells are the nodal volumes.
 #include <span>
 #include <vector>
 
@@ -18,13 +19,14 @@ struct NodeSet {
   std::vector<double> support;   // support radius d_I (m)
   std::vector<double> volume;    // m^3 (2D: m^2 per metre of thickness)
   std::vector<char> on_boundary;
+  Mesh cells;  // linear simplices on the nodes (same numbering); volume = dual_cell_volumes(cells)
   Index size() const { return static_cast<Index>(positions.size()); }
 };
 
 /// A lattice over the box at `spacing` (adjusted per axis so that nodes lie on
 /// every face); inside each refine box, that box's own finer lattice replaces
-/// it. Volumes from the Delaunay triangulation of the nodes, so they add up to
-/// the box's volume.
+/// it. Cells: the Delaunay triangulation of the nodes, so the volumes add up
+/// to the box's volume.
 NodeSet lattice_nodes(int dimension, const Box& box, double spacing, std::span<const RefineRegion> refine,
                       double support_factor);
 
