@@ -27,6 +27,7 @@ enum class NodePlacement { lattice, mesh };
 enum class MlsBasis { linear, quadratic };
 enum class WeightFunction { quartic };
 enum class EssentialMethod { penalty, nitsche };
+enum class NodalGradient { direct, smoothed };
 enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
@@ -90,6 +91,7 @@ struct MeshlessOptions {
   int quadrature_order = 2;
   EssentialMethod essential = EssentialMethod::nitsche;
   bool stabilization = true;
+  NodalGradient gradient = NodalGradient::direct;  // nodal: MLS gradient at the node, or SCNI
 };
 
 struct Discretization {
@@ -184,6 +186,7 @@ KERF_ENUM_NAMES(NodePlacement, "lattice", "mesh");
 KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
 KERF_ENUM_NAMES(WeightFunction, "quartic");
 KERF_ENUM_NAMES(EssentialMethod, "penalty", "nitsche");
+KERF_ENUM_NAMES(NodalGradient, "direct", "smoothed");
 KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");

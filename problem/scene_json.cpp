@@ -95,7 +95,8 @@ json scene_to_json(const Scene& s) {
         {"weight", to_string(ml.weight)},
         {"quadrature", {{"order", ml.quadrature_order}}},
         {"essential", to_string(ml.essential)},
-        {"stabilization", ml.stabilization}}}};
+        {"stabilization", ml.stabilization},
+        {"gradient", to_string(ml.gradient)}}}};
   json boundary = json::array();
   for (const auto& bc : s.boundary) boundary.push_back(boundary_json(bc, dim));
   j["boundary"] = boundary;

@@ -143,7 +143,7 @@ void read_discretization(const YamlField& f, int dim, Discretization& d) {
   }
   if (f.has("meshless")) {
     YamlField m = f["meshless"];
-    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization"});
+    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient"});
     MeshlessOptions& o = d.meshless;
     if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
@@ -161,6 +161,7 @@ void read_discretization(const YamlField& f, int dim, Discretization& d) {
     if (m.has("essential"))
       o.essential = m["essential"].enumeration<EssentialMethod>();
     if (m.has("stabilization")) o.stabilization = m["stabilization"].boolean();
+    if (m.has("gradient")) o.gradient = m["gradient"].enumeration<NodalGradient>();
   }
 }
 

@@ -59,7 +59,14 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
       }
     load_points_ = std::make_unique<PointIndex>(std::move(points));
   }
-  at_nodes_ = shapes_at(nodes_.positions, "the node");
+  if (scene.discretization.method == Method::nodal &&
+      scene.discretization.meshless.gradient == NodalGradient::smoothed) {
+    smoothing_ = std::make_unique<SmoothedGradients>(nodes_, *index_);
+    if (enrichment()) smoothing_->set_cuts(*enrichment_, nodes_);
+    at_nodes_ = smoothing_->table(nodes_, basis_, enrichment(), error_context_, mls_remedy());
+  } else {
+    at_nodes_ = shapes_at(nodes_.positions, "the node");
+  }
 }
 
 MeshlessDomain::~MeshlessDomain() = default;
@@ -93,8 +100,13 @@ std::vector<Index> MeshlessDomain::advance_cuts(double t, std::vector<Index>* ro
   std::vector<Index> touched;
   for (Index p = 0; p < nodes_.size(); ++p)
     if (flag[p]) touched.push_back(p);
-  refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node", error_context_,
-                     mls_remedy());
+  if (smoothing_) {
+    smoothing_->set_cuts(*enrichment_, nodes_);
+    smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());
+  } else {
+    refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node",
+                       error_context_, mls_remedy());
+  }
   if (rows) *rows = std::move(touched);
   return changed;
 }

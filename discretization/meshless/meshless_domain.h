@@ -15,6 +15,7 @@
 #include "discretization/enrichment/weight_enrichment.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
+#include "discretization/meshless/smoothed_gradient.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
@@ -56,7 +57,8 @@ class MeshlessDomain {
   /// MLS shape functions of the nodes at `points`; a point whose moment matrix
   /// is singular is an error naming it (`what`) and the scene keys to change.
   ShapeTable shapes_at(std::span<const Vec3> points, const std::string& what) const;
-  /// The shape table at the nodes themselves (nodal integration points, output).
+  /// The shape table at the nodes themselves (nodal integration points, output);
+  /// with meshless.gradient: smoothed (nodal), its gradients are the cells' means.
   const ShapeTable& at_nodes() const { return at_nodes_; }
 
   /// Mean number of other nodes whose support covers a node.
@@ -96,7 +98,8 @@ class MeshlessDomain {
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors
   double domain_size_;
-  ShapeTable at_nodes_;
+  std::unique_ptr<SmoothedGradients> smoothing_;  // nodal with meshless.gradient: smoothed
+  ShapeTable at_nodes_;  // smoothed gradients with smoothing_
   NeighborLists covered_;  // per node: the slots of at_nodes_ holding it (built at the first cut growth)
 };
 

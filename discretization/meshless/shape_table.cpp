@@ -10,45 +10,19 @@ namespace kerf {
 
 namespace {
 
-/// Scratch of one thread filling rows.
-struct RowScratch {
-  MlsShape shape;
-  std::vector<Vec3> x;
-  std::vector<WeightValue> w;
-};
-
 /// Fills row p of the table (values, gradients, condition, weight factors); false when singular.
 bool fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& point, Index p,
-              const WeightEnrichment* enrichment, RowScratch& scratch) {
+              const WeightEnrichment* enrichment, PointShapes& scratch) {
   const int dim = t.dimension;
   auto near = t.neighbours.of(p);
   const std::size_t s = t.neighbours.start[p];
-  scratch.x.clear();
-  scratch.w.clear();
-  double scale = 0.0;
-  for (std::size_t k = 0; k < near.size(); ++k) {
-    const Index I = near[k];
-    scratch.x.push_back(nodes.positions[I]);
-    scale = std::max(scale, nodes.support[I]);
-    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I]);
-    if (!t.weight_factor.empty()) t.weight_factor[s + k] = 1.0;
-    if (enrichment && enrichment->enriches(I)) {
-      // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
-      const WeightFactor g = enrichment->factor(I, point);
-      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
-      wI.value *= g.value;
-      wI.hessian *= g.value;
-      t.weight_factor[s + k] = g.value;
-    }
-    scratch.w.push_back(wI);
-  }
-  MlsShape& shape = scratch.shape;
-  const bool ok = mls_shape_functions(dim, basis, point, scratch.x, scratch.w, scale, false, shape);
-  t.condition[p] = shape.condition;
+  const bool ok = scratch.evaluate(nodes, basis, point, near, enrichment);
+  t.condition[p] = scratch.shape.condition;
+  if (!t.weight_factor.empty()) std::copy(scratch.weight_factor.begin(), scratch.weight_factor.end(), &t.weight_factor[s]);
   if (!ok) return false;
   for (std::size_t k = 0; k < near.size(); ++k) {
-    t.value[s + k] = shape.value[k];
-    for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = shape.gradient[k][i];
+    t.value[s + k] = scratch.shape.value[k];
+    for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = scratch.shape.gradient[k][i];
   }
   return true;
 }
@@ -61,7 +35,7 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
   Index failed = -1;
 #pragma omp parallel
   {
-    RowScratch scratch;
+    PointShapes scratch;
 #pragma omp for schedule(dynamic, 64)
     for (Index i = 0; i < count; ++i) {
       const Index p = rows(i);
@@ -71,15 +45,45 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
     }
   }
   if (failed < 0) return;
-  std::ostringstream why;
-  why << context << "the MLS moment matrix at " << what << " [" << points[failed].transpose() << "] cannot be inverted ("
-      << t.neighbours.of(failed).size() << " node supports cover it, condition number " << t.condition[failed]
-      << "; the " << mls_basis_size(t.dimension, basis) << "-term basis needs at least that many nodes not on one "
-      << (t.dimension == 3 ? "plane" : "line") << "); " << remedy;
-  throw Error(why.str());
+  throw Error(singular_moment_message(t.dimension, basis, points[failed], static_cast<Index>(t.neighbours.of(failed).size()),
+                                      t.condition[failed], what, context, remedy));
 }
 
 }  // namespace
+
+std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Index covering, double condition,
+                                   const std::string& what, const std::string& context, const std::string& remedy) {
+  std::ostringstream why;
+  why << context << "the MLS moment matrix at " << what << " [" << x.transpose() << "] cannot be inverted ("
+      << covering << " node supports cover it, condition number " << condition << "; the "
+      << mls_basis_size(dim, basis) << "-term basis needs at least that many nodes not on one "
+      << (dim == 3 ? "plane" : "line") << "); " << remedy;
+  return why.str();
+}
+
+bool PointShapes::evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
+                           const WeightEnrichment* enrichment) {
+  x_.clear();
+  w_.clear();
+  weight_factor.assign(near.size(), 1.0);
+  double scale = 0.0;
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const Index I = near[k];
+    x_.push_back(nodes.positions[I]);
+    scale = std::max(scale, nodes.support[I]);
+    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I]);
+    if (enrichment && enrichment->enriches(I)) {
+      // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
+      const WeightFactor g = enrichment->factor(I, point);
+      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
+      wI.value *= g.value;
+      wI.hessian *= g.value;
+      weight_factor[k] = g.value;
+    }
+    w_.push_back(wI);
+  }
+  return mls_shape_functions(nodes.dimension, basis, point, x_, w_, scale, false, shape);
+}
 
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,

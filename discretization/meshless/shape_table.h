@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
 #include "geometry/neighbor_search.h"
 
@@ -24,6 +25,28 @@ struct ShapeTable {
   const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
   const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }
 };
+
+/// MLS shape functions at one point at a time, for callers that combine
+/// several points (smoothed gradients) or fill table rows; one per thread.
+class PointShapes {
+ public:
+  /// Shape functions of the nodes `near` (those whose support covers `point`)
+  /// into `shape`, their cut factors g_I into weight_factor; false when the
+  /// moment matrix is singular.
+  bool evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
+                const WeightEnrichment* enrichment);
+  MlsShape shape;
+  std::vector<double> weight_factor;
+
+ private:
+  std::vector<Vec3> x_;
+  std::vector<WeightValue> w_;
+};
+
+/// What a singular moment matrix at `what` [x] is told with: `context` (where
+/// the setting comes from), how many supports cover x, the condition number, `remedy`.
+std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Index covering, double condition,
+                                   const std::string& what, const std::string& context, const std::string& remedy);
 
 /// Shape functions at `points`, with the cuts' enriched weights w_I g_I when
 /// `enrichment` is given. Throws when the moment matrix at a point cannot be

@@ -78,9 +78,13 @@ TEST(NodalBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
   for (int dim : {2, 3})
     for (MaterialModel model : all_models)
       for (const char* stab : {"true", "false"})
-        expect_consistent_derivatives(*small_body("nodal", dim, model, {std::string("discretization.meshless.stabilization=") + stab}),
-                                      std::string("nodal ") + to_string(model) + " dim " + std::to_string(dim) + " stab " + stab,
-                                      true);
+        for (const char* gradient : {"direct", "smoothed"})
+          expect_consistent_derivatives(
+              *small_body("nodal", dim, model,
+                          {std::string("discretization.meshless.stabilization=") + stab,
+                           std::string("discretization.meshless.gradient=") + gradient}),
+              std::string("nodal ") + to_string(model) + " dim " + std::to_string(dim) + " stab " + stab + " " + gradient,
+              true);
 }
 
 TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {

@@ -1,0 +1,93 @@
+#pragma once
+// Stabilised conforming nodal integration (SCNI, Chen et al. 2001) for the
+// nodal method (meshless.gradient: smoothed): the gradient of shape function
+// K at node I is its mean over I's cell Omega_I,
+//   g_K(I) = 1/V_I [ sum over the cell's boundary of phi_K n dA
+//                    - integral over the cuts inside the cell of (phi_K+ - phi_K-) n dA ],
+// the divergence theorem on the cell minus the cut (n the cut's normal,
+// phi_K+ on the side it points to), so the jump across a crack is not smeared
+// into the strain. The cells are the barycentric dual cells of the node set's
+// simplices (their measures are the nodal volumes): in each simplex, the part
+// where node a's barycentric coordinate is the largest. Boundary samples:
+// 2D, two Gauss points on each dual segment (edge midpoint to centroid) and
+// on each half boundary edge; 3D, the centroid of each triangle of the dual
+// quadrilaterals (edge midpoint, face centroid, centroid, face centroid) and
+// of the boundary faces' quadrilateral parts. Every rule is exact for linear
+// fields, so the smoothed gradient of an affine field is exact (patch test).
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/meshless/node_set.h"
+#include "discretization/meshless/shape_table.h"
+#include "geometry/neighbor_search.h"
+
+namespace kerf {
+
+class CellLocator;
+
+/// A flat piece of a cell's boundary: a segment (2D, corners 0-1) or a
+/// triangle (3D), with its outward normal times its length or area.
+struct CellPart {
+  std::array<Vec3, 3> corner;
+  int corners = 2;
+  Vec3 weighted_normal = Vec3::Zero();
+};
+
+/// Where shape functions are sampled for one cell: a point and the outward
+/// normal times the quadrature weight (m^2 in 3D, m in 2D).
+struct CellSample {
+  Vec3 position = Vec3::Zero();
+  Vec3 weighted_normal = Vec3::Zero();
+};
+
+class SmoothedGradients {
+ public:
+  /// The boundary samples of every node's cell (nodes.cells must cover the
+  /// nodes); `index`, a k-d tree over the nodes, must outlive this object.
+  SmoothedGradients(const NodeSet& nodes, const PointIndex& index);
+  ~SmoothedGradients();
+
+  /// Takes in the pieces `cuts` has gained since the last call: samples on
+  /// both faces of each (in the cell holding each point, a hair off the
+  /// face), and the boundaries of the cells a new piece crosses sampled
+  /// again, split where the cut crosses them.
+  void set_cuts(const CutEnrichment& cuts, const NodeSet& nodes);
+
+  /// Shape functions at the nodes with smoothed gradients: per node, the
+  /// nodes whose support covers it or a sample of its cell; values and cut
+  /// factors at the node itself. Throws like shape_table (`context`, `remedy`).
+  ShapeTable table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+                   const std::string& context, const std::string& remedy) const;
+  /// Recomputes rows of a table made by table() (the cut grew).
+  void refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
+               const WeightEnrichment& enrichment, const std::string& context, const std::string& remedy) const;
+
+  /// Samples of node I's cell (boundary, then cut faces).
+  std::vector<CellSample> samples_of(Index node) const;
+
+ private:
+  struct Row;
+  /// Row I computed alone; throws (context, remedy) when a moment matrix is singular.
+  void compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+                   const std::string& context, const std::string& remedy, Row& row) const;
+  template <class Store>
+  void compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
+                    const WeightEnrichment* enrichment, const std::string& context, const std::string& remedy,
+                    Store store) const;
+
+  const PointIndex& index_;
+  std::unique_ptr<CellLocator> locator_;  // over nodes.cells, built at the first cut
+  NeighborLists parts_of_;  // per node: its slice of parts_ (index unused; start only)
+  std::vector<CellPart> parts_;
+  std::vector<std::vector<CellSample>> samples_;  // per node: its boundary's samples
+  std::vector<std::vector<CellSample>> on_cuts_;  // per node: samples on the cuts' faces inside the cell
+  std::vector<double> radius_;                    // per node: farthest point of its cell (m)
+  std::vector<Index> pieces_done_;                // per cut: pieces taken in by set_cuts
+  double largest_support_ = 0.0, largest_radius_ = 0.0;
+};
+
+}  // namespace kerf
