@@ -217,6 +217,13 @@ bool segment_crosses_cut(const CutSurface& cut, Index first, Index last, const V
   return distance_to_cut(cut, first, last, a) > touch && distance_to_cut(cut, first, last, b) > touch;
 }
 
+Vec3 off_the_cut(const CutSurface& cut, Index pieces, const Vec3& x) {
+  const double touch = 1e-12 * cut.extent;
+  for (Index k = 0; k < pieces; ++k)
+    if (distance_to_cut(cut, k, k + 1, x) <= touch) return x + 1e-9 * cut.extent * cut.pieces[k].normal;
+  return x;
+}
+
 double distance_to_cut(const CutSurface& cut, Index first, Index last, const Vec3& x) {
   double best = std::numeric_limits<double>::infinity();
   for (Index k = first; k < last; ++k) {

@@ -72,6 +72,12 @@ CutRegion cut_region(const CutSurface& cut, Index first, Index last, const CutFr
 /// end on the cut (a node or point lying on it) only touches it: false.
 bool segment_crosses_cut(const CutSurface& cut, Index first, Index last, const Vec3& a, const Vec3& b);
 
+/// x itself, or, when x lies on one of pieces [0, pieces) (within 1e-12 of
+/// the cut's extent), x moved 1e-9 extents to the side that piece's normal
+/// points to: the +1 side, where the Enrichment Grid puts points on the cut.
+/// Visibility and diffraction look from there, so a node on the cut sees one side.
+Vec3 off_the_cut(const CutSurface& cut, Index pieces, const Vec3& x);
+
 /// Distance (m) from x to the nearest of pieces [first, last).
 double distance_to_cut(const CutSurface& cut, Index first, Index last, const Vec3& x);
 

@@ -11,8 +11,11 @@ DiffractionEnrichment::DiffractionEnrichment(const CutSurface& cut, Index pieces
     : cut_(cut),
       pieces_(pieces),
       nodes_(nodes.begin(), nodes.end()),
+      viewpoints_(nodes.begin(), nodes.end()),
       support_(support.begin(), support.end()) {
   enriched_ = nodes_reached(cut_, pieces_, nodes, support);
+  for (std::size_t I = 0; I < viewpoints_.size(); ++I)
+    if (enriched_[I]) viewpoints_[I] = off_the_cut(cut_, pieces_, viewpoints_[I]);
   const auto& v = cut_.vertices;
   if (cut_.dimension == 2) {
     edges_ = {{v[0], v[0]}, {v[pieces_], v[pieces_]}};
@@ -49,9 +52,9 @@ Vec3 DiffractionEnrichment::bend_point(const Vec3& a, const Vec3& b) const {
 
 WeightFactor DiffractionEnrichment::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
-  const Vec3& a = nodes_[node];
-  if (!segment_crosses_cut(cut_, 0, pieces_, a, x)) return {};
-  const WeightValue straight = quartic_weight(x, a, support_[node]);
+  const Vec3& a = viewpoints_[node];
+  if (!segment_crosses_cut(cut_, 0, pieces_, a, off_the_cut(cut_, pieces_, x))) return {};
+  const WeightValue straight = quartic_weight(x, nodes_[node], support_[node]);
   if (straight.value <= 0.0) return {0.0, Vec3::Zero()};
   const Vec3 c = bend_point(a, x);
   const double rest = (x - c).norm(), d = (a - c).norm() + rest;

@@ -5,7 +5,8 @@
 // point of the strip's boundary), d = |x_I - c| + |c - x|, so node I sees
 // around the tip with a weight that fades with the bent path:
 // g_I(x) = w(d / d_I) / w(|x - x_I| / d_I). The edge point c is held fixed in
-// the gradient (it minimises d, so d's gradient is (x - c) / |x - c|).
+// the gradient (it minimises d, so d's gradient is (x - c) / |x - c|). Nodes
+// and points lying on the cut count as a hair off its +1 side (off_the_cut).
 #include "discretization/enrichment/weight_enrichment.h"
 
 namespace kerf {
@@ -25,6 +26,7 @@ class DiffractionEnrichment final : public WeightEnrichment {
   CutSurface cut_;
   Index pieces_;
   std::vector<Vec3> nodes_;
+  std::vector<Vec3> viewpoints_;  // the nodes, those on the cut moved off it (off_the_cut)
   std::vector<double> support_;
   std::vector<char> enriched_;
   std::vector<std::array<Vec3, 2>> edges_;  // the free edge: 2D two tips (as points), 3D boundary edges

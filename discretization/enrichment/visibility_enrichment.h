@@ -4,7 +4,9 @@
 // crosses the cut, else untouched (g = 1). Its known flaw, kept on purpose:
 // g jumps along the rays from a node through the cut's tips, so the shape
 // functions are discontinuous in the body beyond the tips. A segment that only
-// touches the cut at one of its two ends is not blocked.
+// touches the cut at one of its two ends is not blocked. Nodes and points
+// lying on the cut count as a hair off its +1 side (off_the_cut), where the
+// grid places them, so they see one side only instead of gluing the faces.
 #include "discretization/enrichment/weight_enrichment.h"
 
 namespace kerf {
@@ -20,7 +22,7 @@ class VisibilityEnrichment final : public WeightEnrichment {
  private:
   CutSurface cut_;
   Index pieces_;
-  std::vector<Vec3> nodes_;
+  std::vector<Vec3> viewpoints_;  // the nodes, those on the cut moved off it (off_the_cut)
   std::vector<char> enriched_;
 };
 

@@ -169,6 +169,30 @@ TEST(WeightEnrichment, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
   EXPECT_LT(below, 0.5);
 }
 
+// A node or point lying on the cut belongs to its +1 side (where the normal
+// points): the grid's phi there is +1 by its convention, and visibility and
+// diffraction take it a hair above, so a node there sees one side only and
+// a point there is hidden from the nodes below (seeing both would glue the
+// faces together).
+TEST(WeightEnrichment, ANodeOnTheCutSeesItsPlusSideOnly) {
+  const CutSurface c = straight_2d();  // normal +y
+  const std::vector<Vec3> nodes = {Vec3(0.1, 0.0, 0)};
+  const std::vector<double> support = {0.3};
+  const auto grid = grid_rule(c, 1, nodes, support);
+  VisibilityEnrichment visibility(c, 1, nodes, support);
+  DiffractionEnrichment diffraction(c, 1, nodes, support);
+  for (const WeightEnrichment* rule : std::initializer_list<const WeightEnrichment*>{grid.get(), &visibility, &diffraction}) {
+    EXPECT_EQ(rule->factor(0, Vec3(0.12, 0.05, 0)).value, 1.0);
+    EXPECT_EQ(rule->factor(0, Vec3(0.12, -0.05, 0)).value, 0.0);
+  }
+  // A point on the cut is seen from the + side, not from below.
+  const std::vector<Vec3> below = {Vec3(0.1, -0.05, 0)};
+  VisibilityEnrichment from_below(c, 1, below, support);
+  DiffractionEnrichment around_below(c, 1, below, support);
+  EXPECT_EQ(from_below.factor(0, Vec3(0.12, 0.0, 0)).value, 0.0);
+  EXPECT_LT(around_below.factor(0, Vec3(0.12, 0.0, 0)).value, 1e-3);
+}
+
 TEST(WeightEnrichment, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
   const CutSurface c = kinked_2d();
   std::vector<Vec3> nodes;
