@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/run_report.h"
 #include "discretization/body_factory.h"
+#include "discretization/fem/state_transfer.h"
 #include "geometry/cut_surface.h"
 #include "kerf/version.h"
 #include "output/atomic_file.h"
@@ -38,11 +39,10 @@ void refuse_unrunnable(const Scene& scene) {
                "as it is); expected fem: remove, or domain.box");
     cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
     for (std::size_t i = 0; i < cut.times.size(); ++i)
-      KERF_CHECK(cut.times[i] <= 0.0 || scene.discretization.method == Method::nodal, cut.where.describe(),
-                 ": key 'times': value ", cut.times[i], " at vertex ", i, ": a growing cut in ",
-                 fem ? "FEM (remeshing or removing cells during the run, the state mapped over)"
-                     : "efg (the Gauss points, loads and weak constraints updated)",
-                 " is not built yet; expected discretization.method nodal, or every vertex present at t = 0");
+      KERF_CHECK(cut.times[i] <= 0.0 || scene.discretization.method != Method::efg, cut.where.describe(),
+                 ": key 'times': value ", cut.times[i], " at vertex ", i,
+                 ": a growing cut in efg (the Gauss points, loads and weak constraints updated) is not built yet; "
+                 "expected discretization.method nodal or fem, or every vertex present at t = 0");
   }
 }
 
@@ -71,6 +71,47 @@ void fill_report(json& summary, const RunReport& report) {
   summary["timing"]["cut_refresh_ms"] = cut_refresh;
   summary["stages"] = report.stages;
   if (!report.counters.empty()) summary["solver"] = report.counters;
+}
+
+/// Pieces of all the scene's cuts present at time t.
+Index pieces_at(const std::vector<CutSurface>& cuts, double t) {
+  Index count = 0;
+  for (const CutSurface& c : cuts) count += c.pieces_at(t);
+  return count;
+}
+
+/// What a run holds of its body: rebuilt together when FEM remeshes.
+struct RunParts {
+  std::unique_ptr<DiscreteBody> body;
+  std::unique_ptr<ProbeSet> probes;
+  std::unique_ptr<Stepper> stepper;
+};
+
+/// FEM and a cut that grew by this state's time: the body is meshed again
+/// with the pieces present (or more cells removed), the state carried onto the
+/// new nodes, the stepper and probes made again on the new body. Timed like a
+/// meshless update: cut_update_ms (mesh, body, state transfer) and
+/// cut_refresh_ms (the new stepper reading mass and forces).
+void remesh_for_cuts(const Scene& scene, RunParts& run, SolverState& state, RunReport& report) {
+  const double start = now_seconds();
+  RunReport remesh_report;  // its setup phase is the cut update's, not the run's
+  std::unique_ptr<DiscreteBody> body = make_body(scene, remesh_report, state.t);
+  const StateTransfer transfer(dynamic_cast<const FemBody&>(*run.body), dynamic_cast<const FemBody&>(*body));
+  state.u = transfer(state.u);
+  state.v = transfer(state.v);
+  state.a = transfer(state.a);
+  const double updated = now_seconds();
+  run.stepper = make_stepper(*body, scene, report);
+  run.stepper->discretization_changed(state);
+  run.probes = std::make_unique<ProbeSet>(scene, *body);
+  run.body = std::move(body);
+  const double refreshed = now_seconds();
+  report.cut_update_seconds.push_back(updated - start);
+  report.cut_refresh_seconds.push_back(refreshed - updated);
+  report.phases.add("cut_update", refreshed - start);
+  for (const auto& [name, value] : remesh_report.counters) report.counters[name] += value;
+  report.counters["cut_remeshes"] += 1;
+  report.counters["cut_updated_nodes"] += run.body->node_count();
 }
 
 /// A cut that grew by this state's time changes the body's shape functions
@@ -108,21 +149,27 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   auto previous_handler = std::signal(SIGINT, [](int) { interrupted = true; });
   interrupted = false;
   try {
-    std::unique_ptr<DiscreteBody> body = make_body(scene, report);
-    ProbeSet probes(scene, *body);
-    std::unique_ptr<Stepper> stepper = make_stepper(*body, scene, report);
+    RunParts run;
+    run.body = make_body(scene, report);
+    run.probes = std::make_unique<ProbeSet>(scene, *run.body);
+    run.stepper = make_stepper(*run.body, scene, report);
     SolverState state;
-    stepper->initialize(state);  // timed inside as assembly and factorize
-    summary["counts"] = {{"nodes", body->node_count()},
-                         {"dofs", body->dof_count()},
-                         {"elements", body->element_count()},
-                         {"neighbors_mean", body->mean_neighbors()}};
+    run.stepper->initialize(state);  // timed inside as assembly and factorize
+    summary["counts"] = {{"nodes", run.body->node_count()},
+                         {"dofs", run.body->dof_count()},
+                         {"elements", run.body->element_count()},
+                         {"neighbors_mean", run.body->mean_neighbors()}};
+    // FEM follows a growing cut by meshing again when pieces appear.
+    std::vector<CutSurface> fem_cuts;
+    if (scene.discretization.method == Method::fem)
+      for (const Cut& c : scene.cuts) fem_cuts.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
+    Index fem_pieces = pieces_at(fem_cuts, 0.0);
     summary["timing"]["setup_s"] = now_seconds() - start;
 
     const int every = scene.output.vtk_every;
     std::unique_ptr<VtkSeries> vtk;
     if (every > 0) vtk = std::make_unique<VtkSeries>(outcome.directory, scene.name);
-    std::vector<std::string> columns = probes.columns();
+    std::vector<std::string> columns = run.probes->columns();
     columns.insert(columns.begin(), "time");
     ProbeTable table(outcome.directory + "/probes.csv", columns);
     EnergyState energy;
@@ -130,48 +177,61 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     Vector reaction, load_before, load_after, u_before;
     auto observe = [&](bool final_step) {
       ScopedTimer timer(report.phases, "output");
-      if (probes.needs_reaction()) reaction = stepper->reaction(state);
-      if (probes.needs_energy()) {
-        energy.kinetic = stepper->kinetic_energy(state);
-        energy.strain = body->strain_energy(state.u);
+      if (run.probes->needs_reaction()) reaction = run.stepper->reaction(state);
+      if (run.probes->needs_energy()) {
+        energy.kinetic = run.stepper->kinetic_energy(state);
+        energy.strain = run.body->strain_energy(state.u);
       }
-      std::vector<double> row = probes.values(state, reaction, energy);
+      std::vector<double> row = run.probes->values(state, reaction, energy);
       row.insert(row.begin(), state.t);
       table.append(row);
       if (vtk) {
         BodySnapshot snapshot, cut;
-        body->snapshot(state.u, snapshot);
-        body->cut_snapshot(state.u, cut);
+        run.body->snapshot(state.u, snapshot);
+        run.body->cut_snapshot(state.u, cut);
         // The grids' phi only when a cut grew since the last write (or at the first).
         const std::size_t growths = report.cut_update_seconds.size();
         std::vector<LatticeSnapshot> lattices;
-        if (growths != lattices_written_at) lattices = body->enrichment_lattices();
+        if (growths != lattices_written_at) lattices = run.body->enrichment_lattices();
         vtk->write(snapshot, state.t, &cut, growths != lattices_written_at ? &lattices : nullptr);
         lattices_written_at = growths;
         report.add_stage("vtk");
       }
-      if (final_step) summary["probes"] = probes.final_values(state, reaction, energy);
+      if (final_step) summary["probes"] = run.probes->final_values(state, reaction, energy);
     };
     observe(false);
-    const int steps = stepper->step_count();
-    const double dt = stepper->time_step();
+    const int steps = run.stepper->step_count();
+    const double dt = run.stepper->time_step();
     const bool static_run = scene.solve.analysis == Analysis::static_analysis;
     const int output_every = every > 0 ? every : 1;
-    if (probes.needs_energy()) stepper->applied_load(state, load_before);
+    if (run.probes->needs_energy()) run.stepper->applied_load(state, load_before);
     const double loop_start = now_seconds();
     for (int i = 1; i <= steps; ++i) {
       KERF_CHECK(!interrupted, "interrupted (Ctrl-C) at step ", i, " of ", steps,
                  "; the results written so far are complete and readable");
-      if (probes.needs_energy()) u_before = state.u;
+      if (run.probes->needs_energy()) u_before = state.u;
       double step_start = now_seconds();
-      stepper->advance(state, dt);
+      run.stepper->advance(state, dt);
       report.step_seconds.push_back(now_seconds() - step_start);
-      report.counters["newton_iterations"] += stepper->last_iterations();
-      advance_cuts(*body, *stepper, state, report);
-      if (probes.needs_energy()) {  // trapezoidal work of the applied loads
-        stepper->applied_load(state, load_after);
+      report.counters["newton_iterations"] += run.stepper->last_iterations();
+      if (run.probes->needs_energy()) {  // trapezoidal work of the applied loads, before a cut changes the dofs
+        run.stepper->applied_load(state, load_after);
         energy.external_work += 0.5 * (load_before + load_after).dot(state.u - u_before);
         load_before.swap(load_after);
+      }
+      const std::size_t growths = report.cut_update_seconds.size();
+      if (const Index now = pieces_at(fem_cuts, state.t); now != fem_pieces) {
+        remesh_for_cuts(scene, run, state, report);
+        fem_pieces = now;
+      } else {
+        advance_cuts(*run.body, *run.stepper, state, report);
+      }
+      if (report.cut_update_seconds.size() != growths) {
+        // Probes interpolate with the new shape functions (a probe on a face
+        // now sees its own side only), and the loads as the new discretization
+        // integrates them.
+        if (scene.discretization.method != Method::fem) run.probes = std::make_unique<ProbeSet>(scene, *run.body);
+        if (run.probes->needs_energy()) run.stepper->applied_load(state, load_before);
       }
       bool last = i == steps;
       bool output_step = last || static_run || i % output_every == 0;

@@ -64,15 +64,15 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
 
 }  // namespace
 
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time) {
   ScopedTimer timer(report.phases, "setup");
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, report);
-  // The scene's cuts as they stand at t = 0: `remesh` ones shape the mesh, `remove` ones delete cells.
+  // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
   std::vector<CutPiece> remeshed, removed;
   for (const Cut& c : scene.cuts) {
     const CutSurface cut = cut_surface(scene.dimension, c.vertices, c.times, c.where.describe());
     std::vector<CutPiece>& pieces = c.fem == FemCut::remesh ? remeshed : removed;
-    pieces.insert(pieces.end(), cut.pieces.begin(), cut.pieces.begin() + cut.pieces_at(0.0));
+    pieces.insert(pieces.end(), cut.pieces.begin(), cut.pieces.begin() + cut.pieces_at(time));
   }
   Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, std::move(remeshed));
   report.add_stage("mesh");

@@ -8,6 +8,8 @@
 
 namespace kerf {
 
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report);
+/// FEM takes the cuts' pieces present at `time` (s): those meshed in
+/// (`fem: remesh`) or whose cells are removed (`fem: remove`).
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time = 0.0);
 
 }  // namespace kerf
