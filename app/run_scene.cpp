@@ -162,7 +162,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     // FEM follows a growing cut by meshing again when pieces appear.
     std::vector<CutSurface> fem_cuts;
     if (scene.discretization.method == Method::fem)
-      for (const Cut& c : scene.cuts) fem_cuts.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
+      for (const Cut& c : scene.cuts)
+        fem_cuts.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
     Index fem_pieces = pieces_at(fem_cuts, 0.0);
     summary["timing"]["setup_s"] = now_seconds() - start;
 

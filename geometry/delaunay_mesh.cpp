@@ -16,8 +16,8 @@ using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 /// The finite simplices of a triangulation whose vertices carry their point index.
 template <class Triangulation, class Simplices>
 void collect(const Triangulation& triangulation, Simplices simplices, int corners, std::size_t points, Mesh& mesh) {
-  KERF_CHECK(triangulation.number_of_vertices() == points, "Delaunay triangulation: ",
-             points - triangulation.number_of_vertices(), " of the ", points,
+  KERF_CHECK(triangulation.number_of_vertices() == points,
+             "Delaunay triangulation: ", points - triangulation.number_of_vertices(), " of the ", points,
              " nodes coincide with others; expected distinct nodes");
   for (auto simplex : simplices)
     for (int k = 0; k < corners; ++k) mesh.cells.push_back(simplex->vertex(k)->info());

@@ -18,7 +18,8 @@ bool fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& p
   const std::size_t s = t.neighbours.start[p];
   const bool ok = scratch.evaluate(nodes, basis, point, near, enrichment);
   t.condition[p] = scratch.shape.condition;
-  if (!t.weight_factor.empty()) std::copy(scratch.weight_factor.begin(), scratch.weight_factor.end(), &t.weight_factor[s]);
+  if (!t.weight_factor.empty())
+    std::copy(scratch.weight_factor.begin(), scratch.weight_factor.end(), t.weight_factor.begin() + s);
   if (!ok) return false;
   for (std::size_t k = 0; k < near.size(); ++k) {
     t.value[s + k] = scratch.shape.value[k];
@@ -45,8 +46,9 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
     }
   }
   if (failed < 0) return;
-  throw Error(singular_moment_message(t.dimension, basis, points[failed], static_cast<Index>(t.neighbours.of(failed).size()),
-                                      t.condition[failed], what, context, remedy));
+  const Index covering = static_cast<Index>(t.neighbours.of(failed).size());
+  throw Error(singular_moment_message(t.dimension, basis, points[failed], covering, t.condition[failed], what, context,
+                                      remedy));
 }
 
 }  // namespace

@@ -30,8 +30,7 @@ void add_segment(Parts& cells, Index a, Index b, const Vec3& p, const Vec3& q, c
 }
 
 /// The triangle (p0, p1, p2) (3D) with its area vector turned to point along `towards`.
-void add_triangle(Parts& cells, Index a, Index b, const Vec3& p0, const Vec3& p1, const Vec3& p2,
-                  const Vec3& towards) {
+void add_triangle(Parts& cells, Index a, Index b, const Vec3& p0, const Vec3& p1, const Vec3& p2, const Vec3& towards) {
   Vec3 area = 0.5 * (p1 - p0).cross(p2 - p0);
   if (area.dot(towards) < 0.0) area = -area;
   add(cells, a, b, {{p0, p1, p2}, 3, area});
@@ -160,7 +159,8 @@ class CutPoints {
     const Vec3 &c0 = piece.corner[0], &c1 = piece.corner[1], &c2 = piece.corner[2];
     if (dim == 2) {
       const int n = std::max(1, static_cast<int>(std::ceil((c1 - c0).norm() / length)));
-      for (int i = 0; i < n; ++i) segment(c0 + (double(i) / n) * (c1 - c0), c0 + (double(i + 1) / n) * (c1 - c0), 40, out);
+      for (int i = 0; i < n; ++i)
+        segment(c0 + (double(i) / n) * (c1 - c0), c0 + (double(i + 1) / n) * (c1 - c0), 40, out);
       return;
     }
     const double longest = std::max({(c1 - c0).norm(), (c2 - c1).norm(), (c0 - c2).norm()});
@@ -220,9 +220,9 @@ class CutPoints {
 struct SmoothedGradients::Row {
   PointShapes shapes;
   std::vector<Index> candidates, near;
-  std::vector<Vec3> sum;    // per node, dense: the boundary integral so far
-  std::vector<char> seen;   // per node, dense
-  std::vector<Index> nodes;  // the row's neighbours (sorted at the end)
+  std::vector<Vec3> sum;       // per node, dense: the boundary integral so far
+  std::vector<char> seen;      // per node, dense
+  std::vector<Index> nodes;    // the row's neighbours (sorted at the end)
   std::vector<Index> at_node;  // the nodes covering the node itself
   std::vector<double> at_node_value, at_node_factor;
   double condition = 0.0;
@@ -233,8 +233,8 @@ SmoothedGradients::~SmoothedGradients() = default;
 SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const PointIndex& index) : index_(index) {
   const Mesh& mesh = nodes.cells;
   KERF_CHECK(mesh.node_count() == nodes.size() && mesh.order == 1 && mesh.cell_count() > 0,
-             "smoothed gradients need linear cells on the nodes (", mesh.node_count(), " cell nodes for ",
-             nodes.size(), " nodes)");
+             "smoothed gradients need linear cells on the nodes (", mesh.node_count(), " cell nodes for ", nodes.size(),
+             " nodes)");
   Parts cells(nodes.size());
   for (Index c = 0; c < mesh.cell_count(); ++c) {
     if (mesh.dimension == 2)
@@ -252,7 +252,7 @@ SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const PointIndex& ind
       for (int k = 0; k < part.corners; ++k)
         radius_[I] = std::max(radius_[I], (part.corner[k] - nodes.positions[I]).norm());
     }
-    parts_of_.start.push_back(static_cast<Index>(parts_.size()));
+    parts_start_.push_back(static_cast<Index>(parts_.size()));
   }
   largest_support_ = *std::max_element(nodes.support.begin(), nodes.support.end());
   largest_radius_ = *std::max_element(radius_.begin(), radius_.end());
@@ -296,7 +296,8 @@ void SmoothedGradients::set_cuts(const CutEnrichment& cuts, const NodeSet& nodes
   for (Index I = 0; I < N; ++I) {
     if (!crossed[I]) continue;
     samples_[I].clear();
-    for (Index k = parts_of_.start[I]; k < parts_of_.start[I + 1]; ++k) sample_part(parts_[k], &cuts, depth, samples_[I]);
+    for (Index k = parts_start_[I]; k < parts_start_[I + 1]; ++k)
+      sample_part(parts_[k], &cuts, depth, samples_[I]);
   }
 }
 
@@ -306,9 +307,8 @@ std::vector<CellSample> SmoothedGradients::samples_of(Index node) const {
   return out;
 }
 
-void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basis,
-                                    const WeightEnrichment* enrichment, const std::string& context,
-                                    const std::string& remedy, Row& row) const {
+void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+                                    const std::string& context, const std::string& remedy, Row& row) const {
   const int dim = nodes.dimension;
   if (row.sum.empty()) row.sum.assign(nodes.size(), Vec3::Zero()), row.seen.assign(nodes.size(), 0);
   auto covering = [&](const Vec3& x) {
@@ -320,8 +320,8 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
   auto evaluate = [&](const Vec3& x, const std::string& what) {
     covering(x);
     if (row.shapes.evaluate(nodes, basis, x, row.near, enrichment)) return;
-    throw Error(singular_moment_message(dim, basis, x, static_cast<Index>(row.near.size()),
-                                        row.shapes.shape.condition, what, context, remedy));
+    throw Error(singular_moment_message(dim, basis, x, static_cast<Index>(row.near.size()), row.shapes.shape.condition,
+                                        what, context, remedy));
   };
   auto visit = [&](Index K) {
     if (!row.seen[K]) row.seen[K] = 1, row.nodes.push_back(K);
@@ -347,7 +347,8 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
 }
 
 template <class Store>
-void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment, const std::string& context,
+void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
+                                     const WeightEnrichment* enrichment, const std::string& context,
                                      const std::string& remedy, Store store) const {
   const Index count = static_cast<Index>(rows.size());
   std::string failure;
@@ -370,9 +371,8 @@ void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet&
   if (!failure.empty()) throw Error(failure);
 }
 
-ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis,
-                                    const WeightEnrichment* enrichment, const std::string& context,
-                                    const std::string& remedy) const {
+ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+                                    const std::string& context, const std::string& remedy) const {
   const int dim = nodes.dimension;
   const Index N = nodes.size();
   struct Result {
@@ -411,8 +411,9 @@ ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis,
   return t;
 }
 
-void SmoothedGradients::refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment& enrichment,
-                                const std::string& context, const std::string& remedy) const {
+void SmoothedGradients::refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
+                                const WeightEnrichment& enrichment, const std::string& context,
+                                const std::string& remedy) const {
   const int dim = nodes.dimension;
   if (table.weight_factor.empty()) table.weight_factor.assign(table.neighbours.index.size(), 1.0);
   compute_rows(rows, nodes, basis, &enrichment, context, remedy, [&](Index r, const Row& row) {

@@ -60,8 +60,8 @@ class SmoothedGradients {
   /// Shape functions at the nodes with smoothed gradients: per node, the
   /// nodes whose support covers it or a sample of its cell; values and cut
   /// factors at the node itself. Throws like shape_table (`context`, `remedy`).
-  ShapeTable table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
-                   const std::string& context, const std::string& remedy) const;
+  ShapeTable table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment, const std::string& context,
+                   const std::string& remedy) const;
   /// Recomputes rows of a table made by table() (the cut grew).
   void refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
                const WeightEnrichment& enrichment, const std::string& context, const std::string& remedy) const;
@@ -81,7 +81,7 @@ class SmoothedGradients {
 
   const PointIndex& index_;
   std::unique_ptr<CellLocator> locator_;  // over nodes.cells, built at the first cut
-  NeighborLists parts_of_;  // per node: its slice of parts_ (index unused; start only)
+  std::vector<Index> parts_start_{0};     // per node I: parts_[parts_start_[I] .. parts_start_[I + 1])
   std::vector<CellPart> parts_;
   std::vector<std::vector<CellSample>> samples_;  // per node: its boundary's samples
   std::vector<std::vector<CellSample>> on_cuts_;  // per node: samples on the cuts' faces inside the cell

@@ -85,25 +85,27 @@ double affine_gradient_error(const std::string& yaml, const std::vector<std::str
 // Across a cut the faces are sampled 1e-10 spacings off it: a linear field's
 // gradient is then exact to about 2e-10 (not round-off).
 TEST(SmoothedGradients, GradientOfAnAffineFieldIsExactAlsoAcrossCuts) {
-  const std::string plate = "dimension: 2\n"
-                            "domain: {box: {min: [-0.02, -0.02], max: [0.02, 0.02]}}\n"
-                            "material: {young: 1.0e4, poisson: 0.3}\n"
-                            "discretization: {method: nodal, meshless: {spacing: 0.002, gradient: smoothed}}\n"
-                            "solve: {analysis: static}\n";
+  const std::string plate =
+      "dimension: 2\n"
+      "domain: {box: {min: [-0.02, -0.02], max: [0.02, 0.02]}}\n"
+      "material: {young: 1.0e4, poisson: 0.3}\n"
+      "discretization: {method: nodal, meshless: {spacing: 0.002, gradient: smoothed}}\n"
+      "solve: {analysis: static}\n";
   EXPECT_LT(affine_gradient_error(plate, {}), 1e-12);
   EXPECT_LT(affine_gradient_error(plate + "cuts: [{polyline: [[-0.0203, 0.0003], [0.0071, 0.0003]]}]\n", {}), 1e-9);
-  EXPECT_LT(affine_gradient_error(plate + "cuts: [{polyline: [[-0.011, -0.0031], [-0.002, 0.0043], [0.009, -0.001]]}]\n",
-                                  {}),
-            1e-9);
+  EXPECT_LT(
+      affine_gradient_error(plate + "cuts: [{polyline: [[-0.011, -0.0031], [-0.002, 0.0043], [0.009, -0.001]]}]\n", {}),
+      1e-9);
   EXPECT_LT(affine_gradient_error(plate + "cuts: [{polyline: [[-0.011, -0.0031], [0.009, 0.004]]}]\n",
                                   {"cuts.0.enrichment=multiplicative"}),
             1e-9);
-  const std::string block = "domain: {box: {min: [0, 0, 0], max: [0.02, 0.02, 0.01]}}\n"
-                            "material: {young: 1.0e4, poisson: 0.3}\n"
-                            "discretization: {method: nodal, meshless: {spacing: 0.0025, gradient: smoothed}}\n"
-                            "solve: {analysis: static}\n"
-                            "cuts: [{strip: [[0.0051, -0.001, 0.0107], [0.0053, -0.001, -0.0013],"
-                            " [0.0121, 0.0131, 0.0109], [0.0119, 0.0131, -0.0011]]}]\n";
+  const std::string block =
+      "domain: {box: {min: [0, 0, 0], max: [0.02, 0.02, 0.01]}}\n"
+      "material: {young: 1.0e4, poisson: 0.3}\n"
+      "discretization: {method: nodal, meshless: {spacing: 0.0025, gradient: smoothed}}\n"
+      "solve: {analysis: static}\n"
+      "cuts: [{strip: [[0.0051, -0.001, 0.0107], [0.0053, -0.001, -0.0013],"
+      " [0.0121, 0.0131, 0.0109], [0.0119, 0.0131, -0.0011]]}]\n";
   EXPECT_LT(affine_gradient_error(block, {}), 1e-9);
 }
 
@@ -113,12 +115,13 @@ TEST(SmoothedGradients, GradientOfAnAffineFieldIsExactAlsoAcrossCuts) {
 // integrals (without them the cells along the cut would see a strain of
 // jump / h).
 TEST(SmoothedGradients, ACutAcrossTheBodyLetsTwoRigidPartsMoveWithoutStrain) {
-  const std::string plate = "dimension: 2\n"
-                            "domain: {box: {min: [-0.02, -0.02], max: [0.02, 0.02]}}\n"
-                            "material: {young: 1.0e4, poisson: 0.3}\n"
-                            "discretization: {method: nodal, meshless: {spacing: 0.002, gradient: smoothed}}\n"
-                            "solve: {analysis: static}\n"
-                            "cuts: [{polyline: [[-0.025, 0.0003], [0.025, 0.0013]]}]\n";
+  const std::string plate =
+      "dimension: 2\n"
+      "domain: {box: {min: [-0.02, -0.02], max: [0.02, 0.02]}}\n"
+      "material: {young: 1.0e4, poisson: 0.3}\n"
+      "discretization: {method: nodal, meshless: {spacing: 0.002, gradient: smoothed}}\n"
+      "solve: {analysis: static}\n"
+      "cuts: [{polyline: [[-0.025, 0.0003], [0.025, 0.0013]]}]\n";
   const double jump = 1e-3;
   auto parts = [&](const Vec3& x) {
     return x.y() > 0.0003 + 0.02 * (x.x() + 0.025) ? Vec3(0.4 * jump, jump, 0) : Vec3(-0.2 * jump, 0.3 * jump, 0);
