@@ -126,8 +126,9 @@ TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
       json s = run_ok("scenes/crack_kinked_2d.yaml", rule_overrides(method, rule), "kinked_" + method + "_" + rule);
       const double error = relative_error("kinked " + method + " " + rule, opening(s), reference);
       if (rule.starts_with("grid")) {
-        // efg meets the 3%; nodal integration does not (6-7% under
-        // refinement, on the straight crack too): the bound is what it measures.
+        // efg meets the 3%; nodal integration with the MLS gradient at
+        // the nodes does not (5-7% from 1 to 0.5 mm): the bound is what it
+        // measures. Smoothed gradients converge (the test below).
         EXPECT_LT(error, method == "efg" ? 0.03 : 0.06) << method << " " << rule;
       }
     }
