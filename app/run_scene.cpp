@@ -80,7 +80,8 @@ Index pieces_at(const std::vector<CutSurface>& cuts, double t) {
   return count;
 }
 
-/// What a run holds of its body: rebuilt together when FEM remeshes.
+/// What a run holds on its body: body and stepper replaced when FEM meshes
+/// again, probes resolved again after any cut growth.
 struct RunParts {
   std::unique_ptr<DiscreteBody> body;
   std::unique_ptr<ProbeSet> probes;
@@ -89,7 +90,8 @@ struct RunParts {
 
 /// FEM and a cut that grew by this state's time: the body is meshed again
 /// with the pieces present (or more cells removed), the state carried onto the
-/// new nodes, the stepper and probes made again on the new body. Timed like a
+/// new nodes, the stepper made again on the new body (the run loop resolves
+/// the probes again after any growth). Timed like a
 /// meshless update: cut_update_ms (mesh, body, state transfer) and
 /// cut_refresh_ms (the new stepper reading mass and forces).
 void remesh_for_cuts(const Scene& scene, RunParts& run, SolverState& state, RunReport& report) {
@@ -103,7 +105,6 @@ void remesh_for_cuts(const Scene& scene, RunParts& run, SolverState& state, RunR
   const double updated = now_seconds();
   run.stepper = make_stepper(*body, scene, report);
   run.stepper->discretization_changed(state);
-  run.probes = std::make_unique<ProbeSet>(scene, *body);
   run.body = std::move(body);
   const double refreshed = now_seconds();
   report.cut_update_seconds.push_back(updated - start);
@@ -228,10 +229,10 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
         advance_cuts(*run.body, *run.stepper, state, report);
       }
       if (report.cut_update_seconds.size() != growths) {
-        // Probes interpolate with the new shape functions (a probe on a face
-        // now sees its own side only), and the loads as the new discretization
-        // integrates them.
-        if (scene.discretization.method != Method::fem) run.probes = std::make_unique<ProbeSet>(scene, *run.body);
+        // Probes interpolate with the new shape functions or mesh (a probe on
+        // a face now sees its own side only), and the loads as the new
+        // discretization integrates them.
+        run.probes = std::make_unique<ProbeSet>(scene, *run.body);
         if (run.probes->needs_energy()) run.stepper->applied_load(state, load_before);
       }
       bool last = i == steps;

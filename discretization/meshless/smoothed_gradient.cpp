@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <sstream>
+#include <string>
 
 #include "core/check.h"
 #include "geometry/boundary_facets.h"
@@ -317,9 +317,11 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
     for (Index K : row.candidates)
       if ((x - nodes.positions[K]).norm() < nodes.support[K]) row.near.push_back(K);
   };
-  auto evaluate = [&](const Vec3& x, const std::string& what) {
+  // The point is named only when its moment matrix is singular (no string per sample).
+  auto evaluate = [&](const Vec3& x, bool at_node) {
     covering(x);
     if (row.shapes.evaluate(nodes, basis, x, row.near, enrichment)) return;
+    const std::string what = at_node ? "the node" : "a point of the smoothing cell of node " + std::to_string(I);
     throw Error(singular_moment_message(dim, basis, x, static_cast<Index>(row.near.size()), row.shapes.shape.condition,
                                         what, context, remedy));
   };
@@ -327,14 +329,14 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
     if (!row.seen[K]) row.seen[K] = 1, row.nodes.push_back(K);
   };
   row.nodes.clear();
-  evaluate(nodes.positions[I], "the node");
+  evaluate(nodes.positions[I], true);
   row.at_node = row.near;
   row.at_node_value = row.shapes.shape.value;
   row.at_node_factor = row.shapes.weight_factor;
   row.condition = row.shapes.shape.condition;
   for (Index K : row.at_node) visit(K);
   auto integrate = [&](const CellSample& sample) {
-    evaluate(sample.position, "a point of the smoothing cell of node " + std::to_string(I));
+    evaluate(sample.position, false);
     for (std::size_t k = 0; k < row.near.size(); ++k) {
       visit(row.near[k]);
       row.sum[row.near[k]] += row.shapes.shape.value[k] * sample.weighted_normal;
