@@ -19,7 +19,10 @@ ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : body_(body), 
         r.nodes = body.select_nodes(*p.select);
         break;
       case ProbeField::indentation:
-        throw Error(p.where.describe() + ": indentation probes need contact, which is not implemented yet");
+      case ProbeField::contact_force:
+        KERF_CHECK(body.contact_reading(*p.contact, Vector::Zero(body.dof_count())), p.where.describe(),
+                   ": probe '", p.name, "': contact ", *p.contact, " is not in the body");
+        break;
       case ProbeField::energy:
         break;
     }
@@ -41,6 +44,9 @@ std::vector<std::string> ProbeSet::columns() const {
         break;
       case ProbeField::indentation:
         out.push_back(n + "_indentation");
+        break;
+      case ProbeField::contact_force:
+        for (int i = 0; i < dim_; ++i) out.push_back(n + "_f" + axes[i]);
         break;
       case ProbeField::energy:
         for (const char* e : {"_kinetic", "_strain", "_external_work", "_total"}) out.push_back(n + e);
@@ -81,7 +87,13 @@ std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState&
       break;
     }
     case ProbeField::indentation:
+      v = {body_.contact_reading(*r.probe.contact, state.u)->indentation};
       break;
+    case ProbeField::contact_force: {
+      const Vec3 force = body_.contact_reading(*r.probe.contact, state.u)->force;
+      v.assign(force.data(), force.data() + dim_);
+      break;
+    }
     case ProbeField::energy:
       v = {energy.kinetic, energy.strain, energy.external_work, energy.total()};
       break;
@@ -112,6 +124,10 @@ nlohmann::ordered_json ProbeSet::final_values(const SolverState& state, const Ve
         out[r.probe.name] = {{"reaction", v}};
         break;
       case ProbeField::indentation:
+        out[r.probe.name] = {{"indentation", v[0]}};
+        break;
+      case ProbeField::contact_force:
+        out[r.probe.name] = {{"contact_force", v}};
         break;
       case ProbeField::energy:
         out[r.probe.name] = {{"kinetic", v[0]}, {"strain", v[1]}, {"external_work", v[2]}, {"total", v[3]}};

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "core/check.h"
+#include "discretization/contact_body.h"
 #include "discretization/fem/fem_body.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
@@ -40,12 +41,13 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
   const bool on_mesh_nodes = options.nodes == NodePlacement::mesh || !scene.box;
   const bool boundary_loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
                                           [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
-  // A background mesh: EFG's integration cells, where boundary loads are
-  // integrated, the nodes themselves with `nodes: mesh`, the extent of a non-box domain.
+  // A background mesh: EFG's integration cells, where boundary loads and
+  // contact are integrated, the nodes themselves with `nodes: mesh`, the
+  // extent of a non-box domain.
   std::optional<Mesh> background;
   if (on_mesh_nodes)
     background = make_mesh(scene, fem_order(scene), scene.discretization.fem.size);
-  else if (scene.discretization.method == Method::efg || boundary_loads)
+  else if (scene.discretization.method == Method::efg || boundary_loads || !scene.contact.empty())
     background = make_mesh(scene, 1, options.spacing);
   if (background) {
     background = corner_mesh(*background);
@@ -62,10 +64,8 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
   return std::make_unique<EfgBody>(scene, std::move(domain));
 }
 
-}  // namespace
-
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time) {
-  ScopedTimer timer(report.phases, "setup");
+/// The body without its contact: fem, efg or nodal.
+std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, RunReport& report, double time) {
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
   std::vector<CutPiece> remeshed, removed;
@@ -81,6 +81,16 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, d
     report.add_stage("cut cells removed");
   }
   return std::make_unique<FemBody>(scene, std::move(mesh));
+}
+
+}  // namespace
+
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time) {
+  ScopedTimer timer(report.phases, "setup");
+  std::unique_ptr<DiscreteBody> body = make_elastic_body(scene, report, time);
+  if (scene.contact.empty()) return body;
+  report.add_stage("contact");
+  return std::make_unique<ContactBody>(scene, std::move(body));
 }
 
 }  // namespace kerf

@@ -9,7 +9,8 @@
 namespace kerf {
 
 /// FEM takes the cuts' pieces present at `time` (s): those meshed in
-/// (`fem: remesh`) or whose cells are removed (`fem: remove`).
+/// (`fem: remesh`) or whose cells are removed (`fem: remove`). With contact
+/// the body comes wrapped in a ContactBody (one more node per sphere).
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time = 0.0);
 
 }  // namespace kerf

@@ -26,6 +26,9 @@ using CouplingVisitor = std::function<void(std::span<const Index> dofs)>;
 struct DirichletDof {
   Index dof;
   double value;  // m
+  /// A static run's load steps scale the value; false when the value already
+  /// is the one at this load (a force-driven sphere's position).
+  bool scales_with_load = true;
 };
 
 /// The displacement at a point as weights on nodal values: u(x) = sum_k w_k u_{node_k}.
@@ -60,6 +63,29 @@ struct LatticeSnapshot {
   std::array<Index, 3> count{1, 1, 1};
   double spacing = 1.0;        // m
   std::vector<double> values;  // axis 0 fastest
+};
+
+/// A quadrature point on the boundary, for surface terms that follow the
+/// deformation (contact): u(position) = interpolation applied to the nodal values.
+struct SurfacePoint {
+  Vec3 position = Vec3::Zero();  // reference (m)
+  double weight = 0.0;           // m^2 (2D: m, per metre of thickness)
+  double size = 0.0;             // the facet's edge length (m): the local resolution
+  PointInterpolation interpolation;
+};
+
+/// Boundary quadrature points and the straight facets they lie on (triangles;
+/// in 2D segments with c == b), in the reference configuration.
+struct SurfaceSamples {
+  std::vector<SurfacePoint> points;
+  std::vector<std::array<Vec3, 3>> facets;
+};
+
+/// Where a rigid indenter stands (DiscreteBody::contact_reading).
+struct ContactReading {
+  double indentation = 0.0;      // depth of the sphere below the undeformed surface (m)
+  Vec3 force = Vec3::Zero();     // force the sphere exerts on the body (N)
+  Vec3 displacement = Vec3::Zero();  // of the sphere's centre (m)
 };
 
 /// What a growing cut changed in a body.
@@ -132,6 +158,34 @@ class DiscreteBody {
   }
   /// The Enrichment Grids' phi, one per grid-enriched cut present.
   virtual std::vector<LatticeSnapshot> enrichment_lattices() const { return {}; }
+
+  /// Quadrature points on the boundary facets that have a corner inside
+  /// `region` (`points_per_direction` Gauss points per facet direction).
+  virtual SurfaceSamples surface_samples(const Box& region, int points_per_direction) const = 0;
+
+  /// A body made of a linear elastic body and terms that are not linear
+  /// (contact) returns the linear body here, whose dofs are the first of this
+  /// body's: implicit solvers assemble its stiffness once. Null otherwise.
+  virtual const DiscreteBody* linear_part() const { return nullptr; }
+  /// The forces of what linear_part() leaves out, added into f (N), and their
+  /// tangent into *sink when given.
+  virtual void add_nonlinear_part(const Vector& u, Vector& f, const BlockSink* sink) const {
+    (void)u, (void)f, (void)sink;
+  }
+  /// Augmented Lagrangian update of constraint multipliers (contact) at a
+  /// converged u at time t (static: the load factor), with the prescribed
+  /// positions that depend on the solution (a force-driven sphere's); true
+  /// when a constraint is still violated beyond its tolerance, so a static
+  /// solve should be repeated with the new multipliers and dirichlet(t).
+  virtual bool augment(const Vector& u, double t) {
+    (void)u, (void)t;
+    return false;
+  }
+  /// The state of the scene's indenter `index` at u; nullopt without contact.
+  virtual std::optional<ContactReading> contact_reading(int index, const Vector& u) const {
+    (void)index, (void)u;
+    return std::nullopt;
+  }
 
   /// The total force (N) that constraints imposed weakly (EFG penalty or
   /// Nitsche) on the boundary faces inside `selection` exert on the body at

@@ -35,7 +35,7 @@ enum class MassKind { lumped, consistent };
 enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
 enum class GridLookup { exact, interpolated };
 enum class FemCut { remesh, remove };
-enum class ProbeField { displacement, reaction, indentation, energy };
+enum class ProbeField { displacement, reaction, indentation, contact_force, energy };
 
 struct Box {
   Vec3 min = Vec3::Zero();
@@ -194,7 +194,7 @@ KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
 KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
 KERF_ENUM_NAMES(FemCut, "remesh", "remove");
-KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "energy");
+KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
 
 template <class E>

@@ -267,7 +267,7 @@ Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
   p.name = f["name"].text();
   if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
     f["name"].fail("value " + f["name"].value_text() + " is not a usable name; expected text without commas or quotes");
-  if (!f.has("field")) f.fail("missing 'field': displacement | reaction | indentation | energy");
+  if (!f.has("field")) f.fail("missing 'field': displacement | reaction | indentation | contact_force | energy");
   p.field = f["field"].enumeration<ProbeField>();
   if (f.has("point")) p.point = f["point"].vector(dim);
   if (f.has("select")) p.select = read_selection(f["select"], dim);
@@ -285,7 +285,8 @@ Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
       if (!p.select) f.fail("a reaction probe needs 'select' (the nodes whose reactions are summed)");
       break;
     case ProbeField::indentation:
-      if (!p.contact) f.fail("an indentation probe needs 'contact: INDEX'");
+    case ProbeField::contact_force:
+      if (!p.contact) f.fail("an " + std::string(to_string(p.field)) + " probe needs 'contact: INDEX'");
       break;
     case ProbeField::energy:
       break;

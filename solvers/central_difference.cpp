@@ -19,7 +19,7 @@ namespace {
 
 class CentralDifferenceStepper final : public Stepper {
  public:
-  CentralDifferenceStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
+  CentralDifferenceStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
       : body_(body), options_(scene.solve), alpha_(scene.material.damping_mass),
         beta_(scene.material.damping_stiffness), constrained_(body.dirichlet(0.0)) {
     ScopedTimer timer(report.phases, "setup");
@@ -76,6 +76,12 @@ class CentralDifferenceStepper final : public Stepper {
     acceleration(half_velocity_, s.a);
     s.v = half_velocity_ + 0.5 * dt * s.a;
     zero_constrained(s.v);
+    // Contact: multipliers absorb the penetration over the next steps, and a
+    // force-driven sphere moves to carry its force (its position is prescribed).
+    if (body_.augment(s.u, t1)) {
+      constrained_ = body_.dirichlet(t1);
+      for (const DirichletDof& d : constrained_) s.u[d.dof] = d.value;
+    }
     s.t = t1;
     ++s.step;
     KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", t1,
@@ -119,7 +125,7 @@ class CentralDifferenceStepper final : public Stepper {
     for (const DirichletDof& d : constrained_) x[d.dof] = 0.0;
   }
 
-  const DiscreteBody& body_;
+  DiscreteBody& body_;
   SolveOptions options_;
   double alpha_, beta_;
   std::vector<DirichletDof> constrained_;
@@ -129,7 +135,7 @@ class CentralDifferenceStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_central_difference_stepper(const DiscreteBody& body, const Scene& scene,
+std::unique_ptr<Stepper> make_central_difference_stepper(DiscreteBody& body, const Scene& scene,
                                                          RunReport& report) {
   return std::make_unique<CentralDifferenceStepper>(body, scene, report);
 }

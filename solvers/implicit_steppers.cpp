@@ -22,8 +22,8 @@ void apply_dirichlet(const std::vector<DirichletDof>& prescribed, Vector& u) {
 
 class StaticStepper final : public Stepper {
  public:
-  StaticStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
-      : body_(body), options_(scene.solve), system_(body, scene.solve, false, report) {}
+  StaticStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
+      : body_(body), options_(scene.solve), system_(body, scene.solve, false, report), report_(report) {}
 
   void initialize(SolverState& s) override {
     s.u = Vector::Zero(body_.dof_count());
@@ -35,8 +35,13 @@ class StaticStepper final : public Stepper {
     // From the step count, so the last step is exactly the full load.
     const double load = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
     load_at(load, f_ext_);
-    std::vector<DirichletDof> prescribed = body_.dirichlet(load);
-    for (DirichletDof& d : prescribed) d.value *= load;
+    std::vector<DirichletDof> prescribed;
+    auto read_prescribed = [&] {
+      prescribed = body_.dirichlet(load);
+      for (DirichletDof& d : prescribed)
+        if (d.scales_with_load) d.value *= load;
+    };
+    read_prescribed();
     std::ostringstream where;
     where << "static load step " << s.step + 1 << " (load factor " << load << ")";
     auto residual = [&](const Vector& u, Vector& r, bool tangent) {
@@ -45,6 +50,18 @@ class StaticStepper final : public Stepper {
       if (tangent) system_.update_matrix(0.0, 1.0, where.str());
     };
     result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
+    // Contact: augmented Lagrangian rounds until no point penetrates beyond
+    // tolerance and force-driven spheres carry their force.
+    int round = 0;
+    for (; body_.augment(s.u, load); ++round) {
+      KERF_CHECK(round < max_augmentations, where.str(), ": contact did not settle in ", max_augmentations,
+                 " augmented Lagrangian rounds (penetration or the sphere's force still off); try more load steps");
+      read_prescribed();
+      const int before = result_.iterations;
+      result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
+      result_.iterations += before;
+    }
+    if (round > 0) report_.counters["contact_augmentations"] += round;
     s.t = load;
     ++s.step;
   }
@@ -69,9 +86,11 @@ class StaticStepper final : public Stepper {
     f *= factor;
   }
 
-  const DiscreteBody& body_;
+  static constexpr int max_augmentations = 50;
+  DiscreteBody& body_;
   SolveOptions options_;
   ImplicitSystem system_;
+  RunReport& report_;
   Vector f_ext_;
   NewtonResult result_;
 };
@@ -81,7 +100,7 @@ class StaticStepper final : public Stepper {
 /// the Newton loop and the reactions are shared.
 class DynamicImplicitStepper : public Stepper {
  public:
-  DynamicImplicitStepper(const DiscreteBody& body, const Scene& scene, RunReport& report)
+  DynamicImplicitStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
       : body_(body),
         options_(scene.solve),
         alpha_(scene.material.damping_mass),
@@ -114,6 +133,7 @@ class DynamicImplicitStepper : public Stepper {
     };
     result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), body_.dirichlet(t1), u, where);
     kinematics(s, dt, u, a, v);
+    body_.augment(u, t1);  // contact: multipliers (and a force-driven sphere's position) for the next step
     s.u = std::move(u);
     s.v = std::move(v);
     s.a = std::move(a);
@@ -163,7 +183,7 @@ class DynamicImplicitStepper : public Stepper {
     return a;
   }
 
-  const DiscreteBody& body_;
+  DiscreteBody& body_;
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;
@@ -206,13 +226,13 @@ class NewmarkStepper final : public DynamicImplicitStepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_static_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+std::unique_ptr<Stepper> make_static_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
   return std::make_unique<StaticStepper>(body, scene, report);
 }
-std::unique_ptr<Stepper> make_implicit_euler_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+std::unique_ptr<Stepper> make_implicit_euler_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
   return std::make_unique<ImplicitEulerStepper>(body, scene, report);
 }
-std::unique_ptr<Stepper> make_newmark_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+std::unique_ptr<Stepper> make_newmark_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
   return std::make_unique<NewmarkStepper>(body, scene, report);
 }
 

@@ -68,12 +68,36 @@ void ImplicitSystem::discretization_changed() {
   std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
   stiffness_assembled_ = false;
   stiffness_changed_ = true;
+  linear_values_.clear();
   last_mass_coefficient_ = last_stiffness_coefficient_ = -1.0;
   if (has_mass_) read_mass();
 }
 
 void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangent) {
   ScopedTimer timer(report_.phases, "assembly");
+  if (const DiscreteBody* linear = body_.linear_part()) {
+    // A linear body with contact: the body's stiffness once, the rest at every call.
+    if (linear_values_.empty()) {
+      report_.add_stage("stiffness");
+      SparseMatrix K = stiffness_;
+      std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
+      linear->tangent(Vector::Zero(linear->dof_count()), add_into(K), nullptr);
+      linear_values_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
+    }
+    Eigen::Map<const SparseMatrix> K(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
+                                     stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), linear_values_.data());
+    f = K * u;
+    if (!with_tangent) {
+      body_.add_nonlinear_part(u, f, nullptr);
+      return;
+    }
+    std::copy(linear_values_.begin(), linear_values_.end(), stiffness_.valuePtr());
+    const BlockSink sink = add_into(stiffness_);
+    body_.add_nonlinear_part(u, f, &sink);
+    stiffness_assembled_ = true;
+    stiffness_changed_ = true;
+    return;
+  }
   if (body_.is_linear()) {
     if (!stiffness_assembled_) {
       report_.add_stage("stiffness");

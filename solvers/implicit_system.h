@@ -2,8 +2,8 @@
 // The matrices of an implicit step over all dofs: K(u) and, when asked, the mass
 // M (lumped or consistent, same pattern as K). Forms A = c_M M + c_K K on the
 // free dofs and solves with it, skipping work that cannot have changed: a
-// linear body assembles K once, an unchanged A is not factorized again, and
-// with a direct backend a changed A is first solved by conjugate gradients
+// linear body assembles K once (with contact, its elastic part), an unchanged
+// A is not factorized again, and with a direct backend a changed A is first solved by conjugate gradients
 // preconditioned with the last factorization, refactorizing only when those
 // need more than a few iterations (the answer is the same to the tolerance).
 #include <memory>
@@ -45,6 +45,7 @@ class ImplicitSystem {
   SparseMatrix stiffness_;
   SparseMatrix system_;          // c_M M + c_K K, all dofs
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
+  std::vector<double> linear_values_;  // body.linear_part()'s stiffness in the pattern of K
   Vector lumped_mass_;
   std::vector<Index> diagonal_;
   bool has_mass_ = false;

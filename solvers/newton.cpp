@@ -34,7 +34,10 @@ NewtonResult newton_solve(ImplicitSystem& system, const NewtonOptions& options, 
                " (the solution diverged; a smaller time step or more load steps may help)");
     const bool moves_boundary = jump.squaredNorm() > 0.0;
     if (moves_boundary) r += system.system_times(jump);  // the linearised effect of the jump
-    if (iteration == 1) reference = std::max({reference, norm, free_norm(free, r)});
+    // The first residual sets the scale; when it is zero (a prescribed motion
+    // that the linearisation does not feel yet, as a sphere not yet touching),
+    // the first nonzero one.
+    if (iteration == 1 || reference == 0.0) reference = std::max({reference, norm, free_norm(free, r)});
     result.residual = norm;
     if (!moves_boundary && (norm <= options.tolerance * reference || norm == 0.0)) return result;
     if (iteration > options.max_iterations) {

@@ -40,6 +40,6 @@ class Stepper {
 
 /// Picks static, implicit Euler, Newmark or central differences from the scene.
 /// Refuses an explicit dt above the critical estimate, naming the estimate.
-std::unique_ptr<Stepper> make_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_stepper(DiscreteBody& body, const Scene& scene, RunReport& report);
 
 }  // namespace kerf

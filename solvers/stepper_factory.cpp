@@ -4,7 +4,7 @@
 
 namespace kerf {
 
-std::unique_ptr<Stepper> make_stepper(const DiscreteBody& body, const Scene& scene, RunReport& report) {
+std::unique_ptr<Stepper> make_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
   if (scene.solve.analysis == Analysis::static_analysis) return make_static_stepper(body, scene, report);
   switch (scene.solve.integrator) {
     case Integrator::implicit_euler:

@@ -310,6 +310,38 @@ void FemBody::build_constraints(const Scene& scene) {
       [](const BoundaryCondition&) { return true; });
 }
 
+SurfaceSamples FemBody::surface_samples(const Box& region, int points_per_direction) const {
+  const int dim = mesh_.dimension, fdim = dim - 1, nf = facets_.nodes_per_facet, corners = dim;
+  const QuadratureRule rule = collapsed_gauss(fdim, points_per_direction);
+  std::vector<double> N(nf), dN(nf * fdim);
+  SurfaceSamples out;
+  for (Index fi = 0; fi < facets_.count(); ++fi) {
+    auto fn = facets_.facet(fi);
+    if (std::none_of(fn.begin(), fn.begin() + corners, [&](Index n) { return region.contains(mesh_.nodes[n], 0.0); }))
+      continue;
+    const Vec3 a = mesh_.nodes[fn[0]], b = mesh_.nodes[fn[1]], c = fdim == 2 ? mesh_.nodes[fn[2]] : b;
+    out.facets.push_back({a, b, c});
+    const double size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    for (std::size_t q = 0; q < rule.points.size(); ++q) {
+      simplex_shape_values(fdim, mesh_.order, rule.points[q], N.data());
+      simplex_shape_gradients(fdim, mesh_.order, rule.points[q], dN.data());
+      SurfacePoint p;
+      Vec3 t1 = Vec3::Zero(), t2 = Vec3::Zero();
+      for (int k = 0; k < nf; ++k) {
+        p.position += N[k] * mesh_.nodes[fn[k]];
+        t1 += mesh_.nodes[fn[k]] * dN[k * fdim];
+        if (fdim == 2) t2 += mesh_.nodes[fn[k]] * dN[k * fdim + 1];
+        p.interpolation.nodes.push_back(fn[k]);
+        p.interpolation.weights.push_back(N[k]);
+      }
+      p.weight = rule.weights[q] * (fdim == 2 ? t1.cross(t2).norm() : t1.norm());
+      p.size = size;
+      out.points.push_back(std::move(p));
+    }
+  }
+  return out;
+}
+
 std::optional<double> FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.

@@ -41,6 +41,7 @@ class FemBody final : public DiscreteBody {
   std::vector<Index> select_nodes(const Selection& selection) const override;
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override;
   void snapshot(const Vector& u, BodySnapshot& out) const override;
+  SurfaceSamples surface_samples(const Box& region, int points_per_direction) const override;
 
   const Mesh& mesh() const { return mesh_; }
 

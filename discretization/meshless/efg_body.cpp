@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
@@ -75,10 +76,10 @@ void EfgBody::build_constraints(const Scene& scene) {
     const std::size_t per_facet = c.points.position.size() / facets.size();
     for (std::size_t q = 0; q < c.points.position.size(); ++q) {
       c.facet.push_back(facets[q / per_facet]);
-      double h = 0.0;
-      auto near = c.shapes.neighbours.of(static_cast<Index>(q));
-      for (Index I : near) h += nodes.spacing[I];
-      h /= static_cast<double>(near.size());
+      // The finest spacing among the point's nodes: on a graded lattice the
+      // mean lets the coarse nodes weaken the term below what Nitsche needs.
+      double h = std::numeric_limits<double>::infinity();
+      for (Index I : c.shapes.neighbours.of(static_cast<Index>(q))) h = std::min(h, nodes.spacing[I]);
       c.alpha.push_back(factor * law_.p_wave_modulus() / h);
     }
     for (int i = 0; i < domain_.dimension(); ++i) {

@@ -30,6 +30,9 @@ class MeshlessBody : public DiscreteBody {
   void snapshot(const Vector& u, BodySnapshot& out) const override { domain_.snapshot(u, law_, out); }
   void cut_snapshot(const Vector& u, BodySnapshot& out) const override { domain_.cut_snapshot(u, out); }
   std::vector<LatticeSnapshot> enrichment_lattices() const override { return domain_.enrichment_lattices(); }
+  SurfaceSamples surface_samples(const Box& region, int points_per_direction) const override {
+    return domain_.surface_samples(region, points_per_direction);
+  }
 
   const MeshlessDomain& domain() const { return domain_; }
 

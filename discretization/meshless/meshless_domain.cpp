@@ -187,6 +187,36 @@ BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, in
   return out;
 }
 
+SurfaceSamples MeshlessDomain::surface_samples(const Box& region, int points_per_direction) const {
+  const Mesh& mesh = background();
+  const int corners = dimension();
+  std::vector<Index> facets;
+  SurfaceSamples out;
+  for (Index f = 0; f < facets_.count(); ++f) {
+    auto fn = facets_.facet(f);
+    if (std::none_of(fn.begin(), fn.begin() + corners, [&](Index n) { return region.contains(mesh.nodes[n], 0.0); }))
+      continue;
+    facets.push_back(f);
+    const Vec3 a = mesh.nodes[fn[0]], b = mesh.nodes[fn[1]], c = corners == 3 ? mesh.nodes[fn[2]] : b;
+    out.facets.push_back({a, b, c});
+  }
+  const BoundaryPoints points = boundary_points(facets, points_per_direction);
+  const ShapeTable shapes = shapes_at(points.position, "the boundary point");
+  const std::size_t per_facet = facets.empty() ? 0 : points.position.size() / facets.size();
+  for (std::size_t q = 0; q < points.position.size(); ++q) {
+    const auto& [a, b, c] = out.facets[q / per_facet];
+    SurfacePoint p;
+    p.position = points.position[q];
+    p.weight = points.weight[q];
+    p.size = std::max({(b - a).norm(), (c - b).norm(), (a - c).norm()});
+    const Index begin = shapes.neighbours.start[q], end = shapes.neighbours.start[q + 1];
+    p.interpolation.nodes.assign(shapes.neighbours.index.begin() + begin, shapes.neighbours.index.begin() + end);
+    p.interpolation.weights.assign(shapes.value.begin() + begin, shapes.value.begin() + end);
+    out.points.push_back(std::move(p));
+  }
+  return out;
+}
+
 std::vector<DirichletDof> MeshlessDomain::nodal_constraints(const Scene& scene,
                                                             bool (*take)(const BoundaryCondition&)) const {
   return prescribed_dofs(

@@ -71,6 +71,9 @@ class MeshlessDomain {
   /// Collapsed Gauss points (n per direction) on the straight facets.
   BoundaryPoints boundary_points(std::span<const Index> facets, int points_per_direction) const;
 
+  /// Collapsed Gauss points on the facets with a corner in `region`, with their MLS interpolation.
+  SurfaceSamples surface_samples(const Box& region, int points_per_direction) const;
+
   /// Constraints on the nodal parameters of the selected nodes, for the
   /// Dirichlet conditions `take` accepts; sorted by dof.
   std::vector<DirichletDof> nodal_constraints(const Scene& scene, bool (*take)(const BoundaryCondition&)) const;

@@ -1,0 +1,292 @@
+#include "discretization/contact_body.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "core/check.h"
+#include "geometry/facet_distance.h"
+
+namespace kerf {
+namespace {
+
+constexpr double implicit_penalty_factor = 100.0;   // k_q = factor E* / size
+constexpr double explicit_penalty_factor = 0.01;    // k_q w_q = factor m_q (2/dt)^2, m_q = rho w_q size
+// A point may penetrate 1e-4 of its facet's size, or 1e-3 of the sphere's
+// travel: a flat facet cannot touch the sphere at all its Gauss points, so the
+// first alone can take many rounds of bending the facets; the second bounds
+// the error the penetration adds to the indentation.
+constexpr double penetration_per_size = 1.0e-4;
+constexpr double penetration_per_travel = 1.0e-3;
+constexpr double force_tolerance = 1.0e-4;  // relative, force-driven spheres
+constexpr int contact_points_per_direction = 2;
+
+/// Distance (m) from x to the segment [a, b].
+double distance_to_segment(const Vec3& x, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double length2 = ab.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((x - a).dot(ab) / length2, 0.0, 1.0) : 0.0;
+  return (x - (a + t * ab)).norm();
+}
+
+/// How deep a sphere pressed with `force` (N; 2D: N/m) sinks into a half-space
+/// of modulus e_star (Hertz): the scale of its travel when force-driven (m).
+double hertz_depth(int dim, double force, double radius, double e_star) {
+  if (dim == 3) return std::pow(3.0 * force / (4.0 * e_star * std::sqrt(radius)), 2.0 / 3.0);
+  const double half_width2 = 4.0 * radius * force / (std::numbers::pi * e_star);  // cylinder: b^2
+  return half_width2 / radius;
+}
+
+}  // namespace
+
+ContactBody::ContactBody(const Scene& scene, std::unique_ptr<DiscreteBody> body)
+    : body_(std::move(body)), dim_(body_->dofs_per_node()) {
+  const Material& material = scene.material;
+  const double e_star = material.young / (1.0 - material.poisson * material.poisson);
+  static_ = scene.solve.analysis == Analysis::static_analysis;
+  explicit_ = !static_ && scene.solve.integrator == Integrator::central_difference;
+  const double rate2 = std::pow(2.0 / scene.solve.dt, 2);
+  for (const ContactSphere& c : scene.contact) {
+    Sphere s;
+    s.center = c.center;
+    s.radius = c.radius;
+    s.force = c.force;
+    s.displacement = c.displacement;
+    const double r = c.radius;
+    // The boundary the sphere can reach: within its radius of its path plus a
+    // margin of twice the travel (the path: the prescribed displacement, or
+    // three Hertz depths of its force on a half-space of this material).
+    Vec3 travel;
+    if (c.force) {
+      KERF_CHECK(c.force->norm() > 0.0, c.where.describe(), ": key 'force': value [", c.force->transpose(),
+                 "]: a zero force gives the sphere no direction; expected a nonzero force (N)");
+      s.direction = c.force->normalized();
+      s.hertz_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
+      travel = 3.0 * s.hertz_depth * s.direction;
+    } else {
+      travel = *c.displacement;
+    }
+    const double reach = r + 2.0 * travel.norm();
+    Box region;
+    region.min = c.center.cwiseMin(c.center + travel) - Vec3::Constant(reach);
+    region.max = c.center.cwiseMax(c.center + travel) + Vec3::Constant(reach);
+    SurfaceSamples samples = body_->surface_samples(region, contact_points_per_direction);
+    s.facets = std::move(samples.facets);
+    for (SurfacePoint& p : samples.points)
+      if (distance_to_segment(p.position, c.center, c.center + travel) < reach + p.size) s.points.push_back(std::move(p));
+    KERF_CHECK(!s.points.empty(), c.where.describe(), ": key 'sphere': the sphere (centre [", c.center.transpose(),
+               "], radius ", r, " m) cannot reach the body's boundary along its motion; expected a sphere on or "
+               "near the surface, moving into it");
+    const double overlap = r - distance_to_facets(c.center, s.facets);
+    KERF_CHECK(overlap <= 1e-6 * r, c.where.describe(), ": key 'sphere': the sphere starts ", overlap,
+               " m inside the body; expected it to start on or above the surface (move the centre out by that much)");
+    const double volume = dim_ == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
+    s.mass = material.density * volume;
+    for (const SurfacePoint& p : s.points)
+      s.penalty.push_back(explicit_ ? explicit_penalty_factor * material.density * p.size * rate2
+                                    : implicit_penalty_factor * e_star / p.size);
+    s.multiplier.assign(s.points.size(), 0.0);
+    spheres_.push_back(std::move(s));
+  }
+}
+
+Vec3 ContactBody::node_position(Index node) const {
+  const Index inner_nodes = body_->node_count();
+  return node < inner_nodes ? body_->node_position(node) : spheres_[node - inner_nodes].center;
+}
+
+Vec3 ContactBody::sphere_displacement(std::size_t i, const Vector& u) const {
+  Vec3 d = Vec3::Zero();
+  for (int k = 0; k < dim_; ++k) d[k] = u[dim_ * sphere_node(i) + k];
+  return d;
+}
+
+ContactBody::PointContact ContactBody::evaluate(const Sphere& s, std::size_t q, const Vec3& centre,
+                                                const Vector& u) const {
+  const SurfacePoint& p = s.points[q];
+  Vec3 x = p.position;
+  for (std::size_t k = 0; k < p.interpolation.nodes.size(); ++k)
+    for (int i = 0; i < dim_; ++i) x[i] += p.interpolation.weights[k] * u[dim_ * p.interpolation.nodes[k] + i];
+  PointContact c;
+  const Vec3 d = x - centre;
+  c.distance = d.norm();
+  c.penetration = s.radius - c.distance;
+  c.traction = s.multiplier[q] + s.penalty[q] * c.penetration;
+  c.active = c.traction > 0.0 && c.distance > 0.0;
+  if (c.active) c.normal = d / c.distance;
+  return c;
+}
+
+void ContactBody::visit_couplings(const CouplingVisitor& visit) const {
+  body_->visit_couplings(visit);
+  std::vector<Index> dofs;
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const Index sphere_dof = dim_ * sphere_node(i);
+    for (const SurfacePoint& p : spheres_[i].points) {
+      dofs.clear();
+      for (Index n : p.interpolation.nodes)
+        for (int k = 0; k < dim_; ++k) dofs.push_back(dim_ * n + k);
+      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof + k);
+      visit(dofs);
+    }
+  }
+}
+
+void ContactBody::add_nonlinear_part(const Vector& u, Vector& f, const BlockSink* sink) const {
+  std::vector<Index> dofs;
+  std::vector<double> beta, block;
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const Sphere& s = spheres_[i];
+    const Index sphere_dof = dim_ * sphere_node(i);
+    const Vec3 centre = s.center + sphere_displacement(i, u);
+    for (std::size_t q = 0; q < s.points.size(); ++q) {
+      const PointContact c = evaluate(s, q, centre, u);
+      if (!c.active) continue;
+      const SurfacePoint& p = s.points[q];
+      // x - c = sum_k N_k u_k - u_sphere + const: coefficients beta on the nodes' and the sphere's dofs.
+      const std::size_t m = p.interpolation.nodes.size();
+      dofs.clear();
+      beta.assign(p.interpolation.weights.begin(), p.interpolation.weights.end());
+      beta.push_back(-1.0);
+      for (Index n : p.interpolation.nodes)
+        for (int k = 0; k < dim_; ++k) dofs.push_back(dim_ * n + k);
+      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof + k);
+      // Energy w / (2 k) <lambda + k (R - |x - c|)>^2: force -w t dN, ...
+      const Vec3 force = -p.weight * c.traction * c.normal;
+      for (std::size_t a = 0; a <= m; ++a)
+        for (int k = 0; k < dim_; ++k) f[dofs[dim_ * a + k]] += beta[a] * force[k];
+      if (!sink) continue;
+      // ... and its Hessian in x - c, normal part w k n n^T. The curvature part
+      // -w t (I - n n^T) / |x - c| is left out: while the first iterations
+      // overshoot (t orders of magnitude too large) it makes the matrix
+      // indefinite, and at convergence it is penetration / R ~ 1e-4 of the rest.
+      const Mat3 H = p.weight * s.penalty[q] * c.normal * c.normal.transpose();
+      const std::size_t n = dofs.size();
+      block.assign(n * n, 0.0);
+      for (std::size_t a = 0; a <= m; ++a)
+        for (std::size_t b = 0; b <= m; ++b)
+          for (int k = 0; k < dim_; ++k)
+            for (int l = 0; l < dim_; ++l) block[(dim_ * a + k) * n + dim_ * b + l] = beta[a] * beta[b] * H(k, l);
+      (*sink)(dofs, block);
+    }
+  }
+}
+
+void ContactBody::internal_force(const Vector& u, Vector& f) const {
+  Vector inner;
+  body_->internal_force(inner_part(u), inner);
+  f = Vector::Zero(dof_count());
+  f.head(inner.size()) = inner;
+  add_nonlinear_part(u, f, nullptr);
+}
+
+void ContactBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  Vector inner;
+  body_->tangent(inner_part(u), sink, &inner);
+  Vector all = Vector::Zero(dof_count());
+  all.head(inner.size()) = inner;
+  add_nonlinear_part(u, all, &sink);
+  if (f) *f = std::move(all);
+}
+
+bool ContactBody::augment(const Vector& u, double t) {
+  // The multipliers change only when another solve follows, so that a
+  // settled state keeps the tractions it is in equilibrium with.
+  bool violated = false;
+  std::vector<std::vector<double>> multipliers(spheres_.size());
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    Sphere& s = spheres_[i];
+    const Vec3 travel = sphere_displacement(i, u);
+    const Vec3 centre = s.center + travel;
+    double push = 0.0;  // N: the force along the sphere's direction
+    for (std::size_t q = 0; q < s.points.size(); ++q) {
+      const PointContact c = evaluate(s, q, centre, u);
+      multipliers[i].push_back(std::max(0.0, c.traction));
+      if (c.active) push += s.points[q].weight * c.traction * c.normal.dot(s.direction);
+      if (c.penetration > std::max(penetration_per_size * s.points[q].size, penetration_per_travel * travel.norm()))
+        violated = true;
+    }
+    if (!s.force) continue;
+    const double target = (static_ ? t : 1.0) * s.force->norm();
+    if (std::abs(push - target) <= force_tolerance * target) continue;
+    violated = true;
+    // Secant on g = F^(2/3), linear in the depth for Hertz; until the sphere
+    // presses, steps of its half-space depth.
+    const double g = std::pow(push, 2.0 / 3.0), g_target = std::pow(target, 2.0 / 3.0);
+    double next;
+    if (push <= 0.0)
+      next = s.depth + s.hertz_depth * std::max(t, 0.1);
+    else if (s.previous_g <= 0.0 || g == s.previous_g)
+      next = s.depth + (g_target - g) * s.hertz_depth / g_target;
+    else
+      next = s.depth + (g_target - g) * (s.depth - s.previous_depth) / (g - s.previous_g);
+    s.previous_depth = s.depth;
+    s.previous_g = g;
+    s.depth = next;
+  }
+  if (violated)
+    for (std::size_t i = 0; i < spheres_.size(); ++i) spheres_[i].multiplier = std::move(multipliers[i]);
+  return violated;
+}
+
+std::optional<ContactReading> ContactBody::contact_reading(int index, const Vector& u) const {
+  if (index < 0 || index >= static_cast<int>(spheres_.size())) return std::nullopt;
+  const Sphere& s = spheres_[index];
+  ContactReading reading;
+  reading.displacement = sphere_displacement(index, u);
+  const Vec3 centre = s.center + reading.displacement;
+  reading.indentation = s.radius - distance_to_facets(centre, s.facets);
+  for (std::size_t q = 0; q < s.points.size(); ++q) {
+    const PointContact c = evaluate(s, q, centre, u);
+    if (c.active) reading.force += s.points[q].weight * c.traction * c.normal;
+  }
+  return reading;
+}
+
+Vector ContactBody::lumped_mass() const {
+  Vector m(dof_count());
+  m.head(body_->dof_count()) = body_->lumped_mass();
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    m.segment(dim_ * sphere_node(i), dim_).setConstant(spheres_[i].mass);
+  return m;
+}
+
+void ContactBody::consistent_mass(const BlockSink& sink) const {
+  body_->consistent_mass(sink);
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    std::vector<Index> dofs;
+    std::vector<double> block(dim_ * dim_, 0.0);
+    for (int k = 0; k < dim_; ++k) {
+      dofs.push_back(dim_ * sphere_node(i) + k);
+      block[k * dim_ + k] = spheres_[i].mass;
+    }
+    sink(dofs, block);
+  }
+}
+
+void ContactBody::external_force(double t, Vector& f) const {
+  Vector inner;
+  body_->external_force(t, inner);
+  f = Vector::Zero(dof_count());
+  f.head(inner.size()) = inner;
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
+    if (spheres_[i].force) f.segment(dim_ * sphere_node(i), dim_) = spheres_[i].force->head(dim_);
+}
+
+std::vector<DirichletDof> ContactBody::dirichlet(double t) const {
+  std::vector<DirichletDof> out = body_->dirichlet(t);
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    const Sphere& s = spheres_[i];
+    for (int k = 0; k < dim_; ++k) {
+      const Index dof = dim_ * sphere_node(i) + k;
+      if (s.displacement)
+        out.push_back({dof, (*s.displacement)[k]});
+      else
+        out.push_back({dof, s.depth * s.direction[k], false});
+    }
+  }
+  return out;
+}
+
+}  // namespace kerf
