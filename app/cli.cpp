@@ -8,6 +8,7 @@
 #include "kerf/version.h"
 #include "problem/scene_json.h"
 #include "problem/scene_reader.h"
+#include "studies/study.h"
 
 namespace kerf {
 namespace {
@@ -16,7 +17,7 @@ constexpr const char* usage =
     "usage:\n"
     "  kerf run SCENE.yaml [--set KEY=VALUE]... [--out DIR] [--quiet]\n"
     "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene\n"
-    "  kerf study NAME [--quick] [--out DIR]\n"
+    "  kerf study [NAME] [--quick] [--out DIR] [--quiet]   the studies; no NAME lists them\n"
     "  kerf --version\n";
 
 struct Arguments {
@@ -47,6 +48,27 @@ Arguments parse(const std::vector<std::string>& args) {
   return a;
 }
 
+/// `kerf study [NAME]`: without a name, the list; a failed claim or run exits with 1.
+int study_command(const Arguments& a) {
+  KERF_CHECK(a.overrides.empty(), "study takes no --set (each study builds its own scenes)\n", usage);
+  if (a.target.empty()) {
+    std::cout << "studies (kerf study NAME [--quick] [--out DIR] [--quiet]):\n";
+    for (const StudyEntry& s : all_studies()) std::cout << "  " << s.name << "  " << s.summary << "\n";
+    return 0;
+  }
+  StudyOptions options;
+  options.quick = a.quick;
+  options.out_dir = a.out;
+  options.quiet = a.quiet;
+  try {
+    run_study(a.target, options);
+  } catch (const std::exception& e) {
+    std::cerr << "kerf: error: study " << a.target << ": " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
@@ -62,10 +84,7 @@ int run_command_line(const std::vector<std::string>& args) {
       std::cout << usage;
       return 0;
     }
-    if (a.command == "study") {
-      throw Error("no study named '" + a.target +
-                  "': no studies are built yet (hertz, timing, cut, stability and pareto arrive with issue 5)");
-    }
+    if (a.command == "study") return study_command(a);
     KERF_CHECK(a.command == "run" || a.command == "check", "unknown command '", a.command, "'\n", usage);
     KERF_CHECK(!a.target.empty(), a.command, " needs a scene file\n", usage);
     scene = read_scene(a.target, a.overrides);

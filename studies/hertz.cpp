@@ -1,0 +1,187 @@
+// Hertz study: a rigid sphere pressed into an elastic block, every method
+// against Hertz's solution (the paper's section 4 and Fig. 2, done properly).
+//
+//   kerf study hertz [--quick] [--out DIR]
+//
+// A sphere of radius R = 10 mm is pushed with the force that, on an elastic
+// half-space, gives a contact radius a = R / 10 = 1 mm and an indentation
+// d = a^2 / R = 0.1 mm (Hertz: F = 4/3 E* sqrt(R) d^(3/2), E* = E / (1 - nu^2)).
+// The half-space is a quarter model: the block's faces x = 0 and y = 0 are
+// symmetry planes, the sphere's centre lies on their common edge and carries
+// a quarter of the force. Two families of discretizations:
+//   graded:  nested boxes around the contact, each twice the size and spacing
+//            of the one inside it, out to a block 384 a deep: the half-space
+//            assumption holds there to a fraction of a percent;
+//   uniform: one spacing on a block 8 a deep (the paper's setting), where the
+//            block's size, not the resolution, sets the error.
+// Each method (fem tet4, fem tet10, efg, nodal integration with smoothed
+// gradients, and with the paper's direct ones) runs at several finest
+// spacings; the indentation error against Hertz is plotted against the node
+// count. Claims: in full mode every method but direct nodal is within 2% at
+// its finest graded level, and better than at its coarsest; in quick mode
+// within 6% (tet4 also falls from a/2 to a/4). Direct nodal is reported only.
+#include <cmath>
+#include <sstream>
+
+#include "studies/study_support.h"
+
+namespace kerf {
+namespace {
+
+constexpr double contact_radius = 1.0e-3;        // a (m)
+constexpr double sphere_radius = 10.0e-3;        // R (m)
+constexpr double young = 1.0e4, poisson = 0.3;   // Pa: soft tissue
+constexpr double finest_box = 1.5 * contact_radius;  // the finest box's edge
+constexpr int graded_levels = 8;                 // nested boxes: block edge 1.5 a 2^8 = 384 a
+constexpr double uniform_block = 8.0 * contact_radius;
+
+double hertz_indentation() { return contact_radius * contact_radius / sphere_radius; }
+
+/// The total force (N) that gives hertz_indentation() on a half-space.
+double hertz_force() {
+  const double e_star = young / (1.0 - poisson * poisson);
+  return 4.0 / 3.0 * e_star * std::sqrt(sphere_radius) * std::pow(hertz_indentation(), 1.5);
+}
+
+/// One method of the study and the finest spacings (a / n) it runs at.
+struct Method {
+  std::string label, method, element, gradient;
+  bool claimed;  // held to the bound (the paper's direct nodal gradients are reported only)
+  std::vector<int> graded_full, graded_quick, uniform;
+};
+
+/// The scene: a quarter block of edge `block`, spacing `coarse` outside the
+/// refine boxes `refine` (YAML list items), the sphere touching the top face.
+std::string scene_text(const Method& d, double block, double coarse, const std::string& refine) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "name: hertz\n"
+    << "domain: {box: {min: [0, 0, 0], max: [" << block << ", " << block << ", " << block << "]}}\n"
+    << "material: {model: linear, young: " << young << ", poisson: " << poisson << "}\n"
+    << "discretization:\n"
+    << "  method: " << d.method << "\n"
+    << "  fem: {element: " << (d.element.empty() ? "tet4" : d.element) << ", size: " << coarse << "}\n"
+    << "  meshless: {spacing: " << coarse << ", gradient: " << (d.gradient.empty() ? "direct" : d.gradient) << "}\n"
+    << "  refine:" << (refine.empty() ? " []\n" : "\n" + refine)
+    << "boundary:\n"
+    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x]}\n"
+    << "  - {select: {plane: {axis: y, at: 0}}, fix: [y]}\n"
+    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
+    << "contact:\n"
+    << "  - sphere: {center: [0, 0, " << block + sphere_radius << "], radius: " << sphere_radius << "}\n"
+    << "    force: [0, 0, " << -hertz_force() / 4.0 << "]\n"
+    << "solve: {analysis: static}\n"
+    << "output:\n"
+    << "  vtk: false\n"
+    << "  probes:\n"
+    << "    - {name: indent, contact: 0, field: indentation}\n"
+    << "    - {name: push, contact: 0, field: contact_force}\n";
+  return s.str();
+}
+
+/// Nested refine boxes at the contact: box k has edge finest_box 2^k and
+/// spacing h 2^k, so each coarser lattice falls on the finer one inside it.
+std::string graded_refine(double h, double block) {
+  std::ostringstream s;
+  s.precision(12);
+  for (int k = 0; k < graded_levels; ++k) {
+    const double edge = finest_box * std::ldexp(1.0, k);
+    s << "    - {box: {min: [0, 0, " << block - edge << "], max: [" << edge << ", " << edge << ", " << block
+      << "]}, size: " << h * std::ldexp(1.0, k) << "}\n";
+  }
+  return s.str();
+}
+
+}  // namespace
+
+void hertz_study(const StudyOptions& options) {
+  // 1. What runs. tet4 converges as h and needs a/12 for 2%; the others reach
+  // it at a/4, where tet10 and EFG already take half a minute each.
+  const std::vector<Method> methods{
+      {"fem_tet4", "fem", "tet4", "", true, {2, 4, 8, 12}, {2, 4}, {2, 3, 4}},
+      {"fem_tet10", "fem", "tet10", "", true, {2, 4}, {2}, {2}},
+      {"efg", "efg", "", "", true, {2, 4}, {2}, {2}},
+      {"nodal_smoothed", "nodal", "", "smoothed", true, {2, 4}, {2}, {2}},
+      {"nodal", "nodal", "", "direct", false, {2, 4}, {2}, {2}},
+  };
+  auto graded = [&](const Method& m) { return options.quick ? m.graded_quick : m.graded_full; };
+  auto uniform = [&](const Method& m) { return options.quick ? std::vector<int>{} : m.uniform; };
+  int planned = 0;
+  for (const Method& m : methods) planned += static_cast<int>(graded(m).size() + uniform(m).size());
+  StudyRunner runner("hertz", options, planned);
+  runner.say("Hertz indentation " + std::to_string(hertz_indentation()) + " m under " +
+             std::to_string(hertz_force()) + " N (a quarter of it on the quarter model)");
+
+  // 2. Run every point; a failed run is recorded, not fatal.
+  CsvTable table(runner.out_dir() + "/hertz.csv", {"method", "family", "spacing_m", "a_over_h", "nodes", "dofs",
+                                                   "indentation_m", "error_percent", "setup_s", "solve_s", "status"});
+  Json points = Json::array();
+  auto record = [&](const Method& d, const std::string& family, int n, double h, const Json& summary) {
+    const bool ok = summary.value("status", "") == "ok";
+    const double indentation = ok ? summary["probes"]["indent"]["indentation"].get<double>() : NAN;
+    const double error = 100.0 * (indentation - hertz_indentation()) / hertz_indentation();
+    Json point = {{"method", d.label}, {"family", family}, {"spacing_m", h}, {"a_over_h", n},
+                  {"nodes", ok ? summary["counts"]["nodes"] : Json()}, {"dofs", ok ? summary["counts"]["dofs"] : Json()},
+                  {"indentation_m", ok ? Json(indentation) : Json()}, {"error_percent", ok ? Json(error) : Json()},
+                  {"setup_s", ok ? summary["timing"]["setup_s"] : Json()},
+                  {"solve_s", ok ? summary["timing"]["solve_s"] : Json()},
+                  {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}};
+    std::vector<Json> row;
+    for (const auto& [key, value] : point.items()) row.push_back(key == "status" && !ok ? Json("error") : value);
+    table.row(row);
+    points.push_back(point);
+  };
+  for (const Method& d : methods) {
+    for (int n : graded(d)) {
+      const double h = contact_radius / n;
+      const double block = finest_box * std::ldexp(1.0, graded_levels);
+      const std::string label = "graded_" + d.label + "_a" + std::to_string(n);
+      record(d, "graded", n, h,
+             runner.run(label, scene_text(d, block, h * std::ldexp(1.0, graded_levels), graded_refine(h, block))));
+    }
+    for (int n : uniform(d)) {
+      const double h = contact_radius / n;
+      const std::string label = "uniform_" + d.label + "_a" + std::to_string(n);
+      record(d, "uniform", n, h, runner.run(label, scene_text(d, uniform_block, h, "")));
+    }
+  }
+
+  // 3. The headline: each method's error at its finest graded level.
+  Json finest = Json::object();
+  for (const Json& p : points)
+    if (p["family"] == "graded" && p["status"] == "ok") finest[p["method"].get<std::string>()] = p;
+  const double bound = options.quick ? 6.0 : 2.0;
+  Json result = {{"study", "hertz"},
+                 {"quick", options.quick},
+                 {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
+                            {"indentation_m", hertz_indentation()}, {"force_N", hertz_force()},
+                            {"young_Pa", young}, {"poisson", poisson}}},
+                 {"bound_percent", bound},
+                 {"finest_graded", finest},
+                 {"points", points}};
+  write_json(runner.out_dir() + "/hertz.json", result);
+  plot("hertz", runner.out_dir());
+
+  // 4. The claims.
+  for (const Method& d : methods) {
+    const std::string& m = d.label;
+    if (!finest.contains(m)) {
+      check_claim(!d.claimed, m + " has a graded run that finished");
+      continue;
+    }
+    const double error = std::abs(finest[m]["error_percent"].get<double>());
+    runner.say(m + ": " + std::to_string(error) + " % at a/h = " + finest[m]["a_over_h"].dump() + " (" +
+               finest[m]["nodes"].dump() + " nodes)" + (d.claimed ? "" : ", reported only"));
+    if (!d.claimed) continue;
+    check_claim(error < bound, m + " indentation within " + std::to_string(bound) +
+                                   " % of Hertz at its finest graded level (it is " + std::to_string(error) + " %)");
+    // Refinement helps: the finest level beats the coarsest.
+    for (const Json& p : points)
+      if (p["method"] == m && p["family"] == "graded" && p["a_over_h"] != finest[m]["a_over_h"] &&
+          p["a_over_h"] == graded(d).front() && p["status"] == "ok")
+        check_claim(error < std::abs(p["error_percent"].get<double>()),
+                    m + " error falls from a/h = " + std::to_string(graded(d).front()) + " to the finest level");
+  }
+}
+
+}  // namespace kerf

@@ -1,0 +1,28 @@
+#include <array>
+
+#include "core/check.h"
+#include "studies/study.h"
+
+namespace kerf {
+
+std::span<const StudyEntry> all_studies() {
+  static const std::array<StudyEntry, 1> entries{{
+      {"hertz", "indentation of a block by a rigid sphere against Hertz's solution, every method", hertz_study},
+  }};
+  return entries;
+}
+
+void run_study(const std::string& name, StudyOptions options) {
+  std::string known;
+  for (const StudyEntry& s : all_studies()) {
+    if (name == s.name) {
+      if (options.out_dir.empty()) options.out_dir = "results/" + name;
+      s.run(options);
+      return;
+    }
+    known += std::string(known.empty() ? "" : ", ") + s.name;
+  }
+  throw Error("no study named '" + name + "'; expected one of: " + known);
+}
+
+}  // namespace kerf

@@ -1,0 +1,92 @@
+#include "studies/study_support.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "app/run_scene.h"
+#include "core/check.h"
+#include "core/timer.h"
+#include "output/atomic_file.h"
+#include "problem/scene_reader.h"
+
+namespace kerf {
+
+StudyRunner::StudyRunner(std::string study, const StudyOptions& options, int planned_runs)
+    : study_(std::move(study)), out_(options.out_dir), quiet_(options.quiet), planned_(planned_runs),
+      start_(now_seconds()) {
+  std::filesystem::create_directories(out_ + "/scenes");
+  std::filesystem::create_directories(out_ + "/runs");
+}
+
+Json StudyRunner::run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides) {
+  const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
+  write_file_atomically(scene_file, yaml);
+  ++done_;
+  const double start = now_seconds();
+  Json summary;
+  try {
+    Scene scene = parse_scene(yaml, scene_file, out_ + "/scenes", overrides);
+    RunOptions options;
+    options.out_dir = out_ + "/runs/" + label;
+    options.quiet = true;
+    summary = run_scene(scene, options).summary;
+  } catch (const std::exception& e) {
+    summary = {{"status", "error"}, {"error", e.what()}};
+  }
+  std::ostringstream line;
+  line << "[" << done_ << "/" << planned_ << "] " << label << ": " << summary.value("status", "?") << " in "
+       << std::fixed << std::setprecision(1) << now_seconds() - start << " s (study " << now_seconds() - start_
+       << " s)";
+  if (summary.value("status", "") == "error") line << "\n    " << summary.value("error", "");
+  say(line.str());
+  return summary;
+}
+
+void StudyRunner::say(const std::string& text) const {
+  if (!quiet_) std::fprintf(stderr, "%s: %s\n", study_.c_str(), text.c_str());
+}
+
+CsvTable::CsvTable(const std::string& path, const std::vector<std::string>& columns)
+    : path_(path), columns_(columns.size()) {
+  std::ofstream out(path_);
+  KERF_CHECK(out, "cannot write ", path_);
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+}
+
+void CsvTable::row(const std::vector<Json>& values) {
+  KERF_CHECK(values.size() == columns_, "internal: a row of ", values.size(), " values for ", columns_, " columns");
+  std::ofstream out(path_, std::ios::app);
+  KERF_CHECK(out, "cannot write ", path_);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (i) out << ",";
+    if (values[i].is_string())
+      out << values[i].get<std::string>();
+    else if (values[i].is_null())
+      out << "";
+    else
+      out << values[i].dump();
+  }
+  out << "\n";
+}
+
+void plot(const std::string& script, const std::string& out_dir) {
+  const std::string path = std::string(KERF_SOURCE_DIR) + "/studies/plots/" + script + ".py";
+  const std::string command = "/usr/bin/python3 '" + path + "' '" + out_dir + "'";
+  const int status = std::system(command.c_str());
+  KERF_CHECK(status == 0, "the plot script ", path, " failed (exit ", status,
+             "); the CSV and JSON results are written; expected Debian's python3 with python3-matplotlib and "
+             "python3-numpy (make deps)");
+}
+
+void write_json(const std::string& path, const Json& value) { write_file_atomically(path, value.dump(2) + "\n"); }
+
+void check_claim(bool holds, const std::string& claim) {
+  KERF_CHECK(holds, "claim failed: ", claim);
+}
+
+}  // namespace kerf

@@ -1,0 +1,55 @@
+#pragma once
+// What the studies share: running a scene given as text (the scene is kept
+// next to the results, so any point of a study can be run again by hand),
+// progress lines, CSV tables, plots by Debian's python3, and claims.
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "studies/study.h"
+
+namespace kerf {
+
+using Json = nlohmann::ordered_json;
+
+class StudyRunner {
+ public:
+  StudyRunner(std::string study, const StudyOptions& options, int planned_runs);
+
+  /// Writes `yaml` to <out>/scenes/<label>.yaml, runs it into <out>/runs/<label>
+  /// and returns its summary.json (status "error" and the message when it failed:
+  /// a study records a failed point and goes on).
+  Json run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides = {});
+  /// A progress line (unless quiet).
+  void say(const std::string& text) const;
+  const std::string& out_dir() const { return out_; }
+
+ private:
+  std::string study_;
+  std::string out_;
+  bool quiet_;
+  int planned_, done_ = 0;
+  double start_;
+};
+
+/// A CSV file written row by row (numbers in full precision).
+class CsvTable {
+ public:
+  CsvTable(const std::string& path, const std::vector<std::string>& columns);
+  void row(const std::vector<Json>& values);
+
+ private:
+  std::string path_;
+  std::size_t columns_;
+};
+
+/// Runs studies/plots/<script>.py on the study's folder with /usr/bin/python3.
+void plot(const std::string& script, const std::string& out_dir);
+
+/// Writes <out>/<study>.json atomically.
+void write_json(const std::string& path, const Json& value);
+
+/// Throws "claim failed: ..." when `holds` is false.
+void check_claim(bool holds, const std::string& claim);
+
+}  // namespace kerf
