@@ -12,7 +12,7 @@ namespace kerf {
 namespace {
 
 constexpr double implicit_penalty_factor = 100.0;   // k_q = factor E* / size
-constexpr double explicit_penalty_factor = 0.01;    // k_q w_q = factor m_q (2/dt)^2, m_q = rho w_q size
+constexpr double explicit_penalty_factor = 10.0;    // k_q = factor E* / size
 // A point may penetrate 1e-4 of its facet's size, or 1e-3 of the sphere's
 // travel: a flat facet cannot touch the sphere at all its Gauss points, so the
 // first alone can take many rounds of bending the facets; the second bounds
@@ -62,6 +62,11 @@ ContactBody::ContactBody(const Scene& scene, std::unique_ptr<DiscreteBody> body)
       KERF_CHECK(c.force->norm() > 0.0, c.where.describe(), ": key 'force': value [", c.force->transpose(),
                  "]: a zero force gives the sphere no direction; expected a nonzero force (N)");
       s.direction = c.force->normalized();
+      // Dynamic runs move the sphere by its force and mass along one axis (the others held).
+      const bool along_axis = (s.direction.array().abs() > 1.0 - 1e-12).any();
+      KERF_CHECK(static_ || along_axis, c.where.describe(), ": key 'force': value [", c.force->transpose(),
+                 "]: a dynamic run moves a force-driven sphere along one axis; expected a force along x, y or z "
+                 "(or a static run, or a prescribed displacement)");
       s.hertz_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
       travel = 3.0 * s.hertz_depth * s.direction;
     } else {
@@ -83,10 +88,15 @@ ContactBody::ContactBody(const Scene& scene, std::unique_ptr<DiscreteBody> body)
                " m inside the body; expected it to start on or above the surface (move the centre out by that much)");
     const double volume = dim_ == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
     s.mass = material.density * volume;
-    for (const SurfacePoint& p : s.points)
-      s.penalty.push_back(explicit_ ? explicit_penalty_factor * material.density * p.size * rate2
-                                    : implicit_penalty_factor * e_star / p.size);
+    double total_penalty = 0.0;  // N/m, every point pressing at once
+    for (const SurfacePoint& p : s.points) {
+      s.penalty.push_back((explicit_ ? explicit_penalty_factor : implicit_penalty_factor) * e_star / p.size);
+      total_penalty += s.penalty.back() * p.weight;
+    }
     s.multiplier.assign(s.points.size(), 0.0);
+    // An explicit force-driven sphere is scaled up in mass, if need be, so that
+    // its contact springs do not shorten the critical step (omega dt <= 1).
+    if (explicit_ && s.force) s.mass = std::max(s.mass, 4.0 * total_penalty / rate2);
     spheres_.push_back(std::move(s));
   }
 }
@@ -191,8 +201,9 @@ void ContactBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) con
 }
 
 bool ContactBody::augment(const Vector& u, double t) {
-  // The multipliers change only when another solve follows, so that a
-  // settled state keeps the tractions it is in equilibrium with.
+  // Multipliers change only when another solve follows, so that a settled
+  // state keeps the tractions it is in equilibrium with.
+  KERF_CHECK(static_, "internal: contact multipliers are updated in static runs only");
   bool violated = false;
   std::vector<std::vector<double>> multipliers(spheres_.size());
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
@@ -208,7 +219,7 @@ bool ContactBody::augment(const Vector& u, double t) {
         violated = true;
     }
     if (!s.force) continue;
-    const double target = (static_ ? t : 1.0) * s.force->norm();
+    const double target = t * s.force->norm();
     if (std::abs(push - target) <= force_tolerance * target) continue;
     violated = true;
     // Secant on g = F^(2/3), linear in the depth for Hertz; until the sphere
@@ -282,8 +293,10 @@ std::vector<DirichletDof> ContactBody::dirichlet(double t) const {
       const Index dof = dim_ * sphere_node(i) + k;
       if (s.displacement)
         out.push_back({dof, (*s.displacement)[k]});
-      else
+      else if (static_)
         out.push_back({dof, s.depth * s.direction[k], false});
+      else if (s.direction[k] == 0.0)
+        out.push_back({dof, 0.0});  // dynamic: held across its force
     }
   }
   return out;

@@ -1,22 +1,24 @@
 #pragma once
 // Rigid frictionless spheres pressed into a body (the scene's `contact`), the
 // same for fem, efg and nodal: the body is wrapped, and each sphere becomes
-// one more node whose dofs are the sphere's translation, always prescribed:
-// the scene's displacement, or for a force-driven sphere a position along its
-// force found by secant steps on the contact force (in F^(2/3), which Hertz
-// makes linear in the depth), one per augment(). A force-driven sphere is
-// thus quasi-static and guided along its force line (its lateral reaction,
-// which a quarter model has, goes into the guide).
+// one more node whose dofs are the sphere's translation. A displacement-driven
+// sphere's dofs are prescribed. A force-driven one is guided along its force
+// line (its lateral reaction, which a quarter model has, goes into the
+// guide): in a static run its depth along the force is prescribed too, found
+// by secant steps on the contact force (in F^(2/3), which Hertz makes linear
+// in the depth), one per augment(); in a dynamic run it moves along its force's
+// axis with its own mass (the body's density), pushed by the force.
 //
 // Non-penetration is imposed at Gauss points of the boundary facets the sphere
-// can reach by an augmented Lagrangian (Simo and Laursen 1992): the normal
-// traction at point q is t_q = <lambda_q + k_q (R - |x_q - c|)>_+ (Pa), along
-// the sphere's outward normal n_q; augment() sets lambda_q = t_q and asks for
-// another solve while some point penetrates deeper than 1e-4 of its facet's
-// size and 1e-3 of the sphere's travel, or a sphere's force is off by more
-// than 1e-4. k_q = 100 E / (1 - nu^2)
-// / size_q in implicit runs; an explicit run takes k_q from the mass and dt
-// instead (it must not shorten the critical step) and augments every step.
+// can reach, with the normal traction t_q = <lambda_q + k_q (R - |x_q - c|)>_+
+// (Pa) at point q, along the sphere's outward normal n_q. Static runs use an
+// augmented Lagrangian (Simo and Laursen 1992), k_q = 100 E / (1 - nu^2) /
+// size_q: augment() sets lambda_q = t_q and asks for another solve while some
+// point penetrates deeper than 1e-4 of its facet's size and 1e-3 of the
+// sphere's travel, or a sphere's force is off by more than 1e-4. Dynamic runs
+// use the penalty alone (lambda = 0; updating it every step pumped energy
+// into explicit runs): k_q = 100 E* / size_q implicit, 10 E* / size_q
+// explicit, which leaves a penetration of about p size / k.
 #include <memory>
 #include <vector>
 
@@ -71,7 +73,7 @@ class ContactBody final : public DiscreteBody {
     Vec3 center = Vec3::Zero();  // reference (m)
     double radius = 0.0;         // m
     std::optional<Vec3> force, displacement;
-    double mass = 0.0;              // kg (the dofs are prescribed; explicit runs need a mass)
+    double mass = 0.0;              // kg
     // Force-driven: the unit force direction, the depth along it (m) and the
     // previous (depth, F^(2/3)) of the secant; the half-space depth of the force (m).
     Vec3 direction = Vec3::Zero();

@@ -173,10 +173,10 @@ class DiscreteBody {
     (void)u, (void)f, (void)sink;
   }
   /// Augmented Lagrangian update of constraint multipliers (contact) at a
-  /// converged u at time t (static: the load factor), with the prescribed
-  /// positions that depend on the solution (a force-driven sphere's); true
-  /// when a constraint is still violated beyond its tolerance, so a static
-  /// solve should be repeated with the new multipliers and dirichlet(t).
+  /// converged static u under load factor t, with the prescribed positions
+  /// that depend on the solution (a force-driven sphere's); true when a
+  /// constraint is still violated beyond its tolerance, so the static solve
+  /// is repeated with the new multipliers and dirichlet(t).
   virtual bool augment(const Vector& u, double t) {
     (void)u, (void)t;
     return false;

@@ -76,12 +76,6 @@ class CentralDifferenceStepper final : public Stepper {
     acceleration(half_velocity_, s.a);
     s.v = half_velocity_ + 0.5 * dt * s.a;
     zero_constrained(s.v);
-    // Contact: multipliers absorb the penetration over the next steps, and a
-    // force-driven sphere moves to carry its force (its position is prescribed).
-    if (body_.augment(s.u, t1)) {
-      constrained_ = body_.dirichlet(t1);
-      for (const DirichletDof& d : constrained_) s.u[d.dof] = d.value;
-    }
     s.t = t1;
     ++s.step;
     KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", t1,
@@ -125,7 +119,7 @@ class CentralDifferenceStepper final : public Stepper {
     for (const DirichletDof& d : constrained_) x[d.dof] = 0.0;
   }
 
-  DiscreteBody& body_;
+  const DiscreteBody& body_;
   SolveOptions options_;
   double alpha_, beta_;
   std::vector<DirichletDof> constrained_;

@@ -133,7 +133,6 @@ class DynamicImplicitStepper : public Stepper {
     };
     result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), body_.dirichlet(t1), u, where);
     kinematics(s, dt, u, a, v);
-    body_.augment(u, t1);  // contact: multipliers (and a force-driven sphere's position) for the next step
     s.u = std::move(u);
     s.v = std::move(v);
     s.a = std::move(a);
@@ -183,7 +182,7 @@ class DynamicImplicitStepper : public Stepper {
     return a;
   }
 
-  DiscreteBody& body_;
+  const DiscreteBody& body_;
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;

@@ -1,0 +1,91 @@
+// Contact runs end to end: the supports carry what the sphere pushes
+// (equilibrium through the settled multipliers), a force-driven sphere carries
+// its force, and the explicit example settles near its static answer.
+#include <gtest/gtest.h>
+
+#include "app/run_scene.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+Vec3 vec(const nlohmann::ordered_json& j) {
+  Vec3 v = Vec3::Zero();
+  for (std::size_t i = 0; i < j.size(); ++i) v[i] = j[i].get<double>();
+  return v;
+}
+
+constexpr const char* pressed_block = R"(
+name: pressed
+domain: {box: {min: [0, 0, 0], max: [0.01, 0.01, 0.005]}}
+material: {young: 1.0e4, poisson: 0.3}
+discretization:
+  method: fem
+  fem: {element: tet4, size: 0.001}
+  meshless: {spacing: 0.001}
+boundary:
+  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}
+contact:
+  - sphere: {center: [0.005, 0.005, 0.01], radius: 0.005}
+    displacement: [0, 0, -0.0002]
+solve: {analysis: static}
+output:
+  vtk: false
+  probes:
+    - {name: push, contact: 0, field: contact_force}
+    - {name: support, select: {plane: {axis: z, at: 0}}, field: reaction}
+    - {name: indent, contact: 0, field: indentation}
+)";
+
+nlohmann::ordered_json run_pressed_block(const std::vector<std::string>& overrides, const std::string& name) {
+  RunOptions options;
+  options.out_dir = testing::output_directory(name);
+  options.quiet = true;
+  return run_scene(testing::scene_from_text(pressed_block, overrides), options).summary;
+}
+
+class PressedBlock : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(PressedBlock, SupportsCarryWhatTheSpherePushes) {
+  auto summary = run_pressed_block({"discretization.method=" + GetParam()}, "PressedBlock_" + GetParam());
+  ASSERT_EQ(summary["status"], "ok");
+  const Vec3 push = vec(summary["probes"]["push"]["contact_force"]);
+  const Vec3 support = vec(summary["probes"]["support"]["reaction"]);
+  EXPECT_LT(push.z(), 0.0);
+  EXPECT_LT((push + support).norm(), 1e-3 * push.norm()) << "push " << push.transpose() << " support "
+                                                            << support.transpose();
+  EXPECT_NEAR(summary["probes"]["indent"]["indentation"].get<double>(), 2e-4, 1e-12);
+  EXPECT_GE(summary["solver"]["contact_augmentations"].get<double>(), 1.0);
+}
+
+INSTANTIATE_TEST_SUITE_P(AllMethods, PressedBlock, ::testing::Values("fem", "efg", "nodal"));
+
+TEST(ForceDrivenSphere, CarriesItsForce) {
+  auto summary = run_pressed_block(
+      {"contact.0={sphere: {center: [0.005, 0.005, 0.01], radius: 0.005}, force: [0, 0, -0.002]}"},
+      "ForceDrivenSphere");
+  ASSERT_EQ(summary["status"], "ok");
+  const Vec3 push = vec(summary["probes"]["push"]["contact_force"]);
+  EXPECT_NEAR(push.z(), -0.002, 1e-4 * 0.002);
+  EXPECT_GT(summary["probes"]["indent"]["indentation"].get<double>(), 0.0);
+}
+
+TEST(ExplicitIndentation, SettlesWithinTenPercentOfTheStaticAnswer) {
+  // The explicit run keeps the penalty's penetration (about 6% here); the static one does not.
+  auto dynamic = testing::run_scene_file("scenes/indentation.yaml", {"output.vtk=false"}, "Indentation_dynamic");
+  auto statics = testing::run_scene_file("scenes/indentation.yaml", {"solve.analysis=static", "output.vtk=false"},
+                                         "Indentation_static");
+  ASSERT_EQ(dynamic["status"], "ok");
+  ASSERT_EQ(statics["status"], "ok");
+  const Vec3 push = vec(dynamic["probes"]["push"]["contact_force"]);
+  EXPECT_NEAR(push.z(), -0.01, 0.02 * 0.01) << "the sphere has not settled on its force";
+  const double settled = dynamic["probes"]["indent"]["indentation"].get<double>();
+  const double exact = statics["probes"]["indent"]["indentation"].get<double>();
+  EXPECT_GT(exact, 0.0);
+  EXPECT_NEAR(settled, exact, 0.1 * exact);
+  const double energy_error = dynamic["probes"]["energy"]["total"].get<double>();
+  EXPECT_LT(energy_error, 0.0) << "damping and contact may only take energy out";
+}
+
+}  // namespace
+}  // namespace kerf
