@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
-# The main job (`make run`): runs every example scene and prints where the
-# results are. The studies (issue 5) will be added here as they arrive.
+# The main job (`make run`): every example scene, then every study in its
+# quick mode, into results/main_job/; writes results/main_job/README.md (the
+# headline figures and the plots) and prints where to look.
 set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
 kerf="$build/app/kerf"
-mkdir -p results
+out=results/main_job
+mkdir -p "$out/scenes"
 for scene in scenes/*.yaml; do
   name=$(basename "$scene" .yaml)
-  echo "== $name"
-  "$kerf" run "$scene" --out "results/scenes/$name"
+  echo "== scene $name"
+  "$kerf" run "$scene" --out "$out/scenes/$name" --quiet
 done
+for study in $("$kerf" study | awk '/^  /{print $1}'); do
+  echo "== study $study"
+  "$kerf" study "$study" --quick --out "$out/$study"
+done
+readme=$(/usr/bin/python3 scripts/headline_table.py "$out")
 echo
-echo "Results: results/scenes/<scene>/summary.json, probes.csv, and <scene>.pvd to open in ParaView."
+echo "Headline figures and plots: $readme"
+echo "ParaView: $out/scenes/<scene>/<scene>.pvd; every run's summary.json beside it."
+echo "Full study results (committed): results/README.md"

@@ -151,7 +151,15 @@ void hertz_study(const StudyOptions& options) {
   for (const Json& p : points)
     if (p["family"] == "graded" && p["status"] == "ok") finest[p["method"].get<std::string>()] = p;
   const double bound = options.quick ? 6.0 : 2.0;
+  Json headline = Json::array();
+  for (const auto& [method, p] : finest.items())
+    headline.push_back({{"what", method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " +
+                                     p["nodes"].dump() + " nodes"},
+                        {"value", p["error_percent"]},
+                        {"unit", "%"}});
   Json result = {{"study", "hertz"},
+                 {"headline", headline},
+                 {"plots", {"hertz.png"}},
                  {"quick", options.quick},
                  {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
                             {"indentation_m", hertz_indentation()}, {"force_N", hertz_force()},

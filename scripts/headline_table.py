@@ -1,0 +1,36 @@
+"""Writes DIR/README.md: the headline figures of every study found in DIR/<study>/<study>.json.
+
+usage: /usr/bin/python3 scripts/headline_table.py DIR
+"""
+import glob
+import json
+import os
+import sys
+
+out = sys.argv[1]
+lines = ["# Results of the main job", "",
+         "Written by `make run` (scripts/main_job.sh); each study ran in its quick mode",
+         "(`kerf study NAME --quick`). The committed full runs are in results/ of the repository.", ""]
+for path in sorted(glob.glob(os.path.join(out, "*", "*.json"))):
+    name = os.path.basename(os.path.dirname(path))
+    if os.path.basename(path) != name + ".json":
+        continue
+    with open(path) as f:
+        study = json.load(f)
+    lines += [f"## {name}" + (" (quick)" if study.get("quick") else ""), "", "| figure | value |", "|---|---|"]
+    for h in study.get("headline", []):
+        value = h["value"]
+        text = f"{value:.3g} {h.get('unit', '')}" if isinstance(value, (int, float)) else str(value)
+        lines.append(f"| {h['what']} | {text} |")
+    lines.append("")
+    for plot in study.get("plots", []):
+        lines.append(f"![{name}]({name}/{plot})")
+    lines.append("")
+scenes = sorted(glob.glob(os.path.join(out, "scenes", "*", "*.pvd")))
+if scenes:
+    lines += ["## ParaView series of the example scenes", ""]
+    lines += [f"- `{os.path.relpath(p, out)}`" for p in scenes]
+    lines.append("")
+with open(os.path.join(out, "README.md"), "w") as f:
+    f.write("\n".join(lines))
+print(os.path.join(out, "README.md"))
