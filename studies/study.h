@@ -28,5 +28,6 @@ std::span<const StudyEntry> all_studies();
 void run_study(const std::string& name, StudyOptions options);
 
 void hertz_study(const StudyOptions& options);
+void timing_study(const StudyOptions& options);
 
 }  // namespace kerf

@@ -6,8 +6,9 @@
 namespace kerf {
 
 std::span<const StudyEntry> all_studies() {
-  static const std::array<StudyEntry, 1> entries{{
+  static const std::array<StudyEntry, 2> entries{{
       {"hertz", "indentation of a block by a rigid sphere against Hertz's solution, every method", hertz_study},
+      {"timing", "time of a step of each method and integrator, phase by phase, beside the paper's", timing_study},
   }};
   return entries;
 }
