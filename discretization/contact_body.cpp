@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
-#include <sstream>
 
 #include "core/check.h"
 #include "geometry/facet_distance.h"
@@ -67,8 +66,8 @@ ContactBody::ContactBody(const Scene& scene, std::unique_ptr<DiscreteBody> body)
       KERF_CHECK(static_ || along_axis, c.where.describe(), ": key 'force': value [", c.force->transpose(),
                  "]: a dynamic run moves a force-driven sphere along one axis; expected a force along x, y or z "
                  "(or a static run, or a prescribed displacement)");
-      s.hertz_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
-      travel = 3.0 * s.hertz_depth * s.direction;
+      s.half_space_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
+      travel = 3.0 * s.half_space_depth * s.direction;
     } else {
       travel = *c.displacement;
     }
@@ -227,9 +226,9 @@ bool ContactBody::augment(const Vector& u, double t) {
     const double g = std::pow(push, 2.0 / 3.0), g_target = std::pow(target, 2.0 / 3.0);
     double next;
     if (push <= 0.0)
-      next = s.depth + s.hertz_depth * std::max(t, 0.1);
+      next = s.depth + s.half_space_depth * std::max(t, 0.1);
     else if (s.previous_g <= 0.0 || g == s.previous_g)
-      next = s.depth + (g_target - g) * s.hertz_depth / g_target;
+      next = s.depth + (g_target - g) * s.half_space_depth / g_target;
     else
       next = s.depth + (g_target - g) * (s.depth - s.previous_depth) / (g - s.previous_g);
     s.previous_depth = s.depth;

@@ -77,7 +77,7 @@ class ContactBody final : public DiscreteBody {
     // Force-driven: the unit force direction, the depth along it (m) and the
     // previous (depth, F^(2/3)) of the secant; the half-space depth of the force (m).
     Vec3 direction = Vec3::Zero();
-    double depth = 0.0, previous_depth = 0.0, previous_g = -1.0, hertz_depth = 0.0;
+    double depth = 0.0, previous_depth = 0.0, previous_g = -1.0, half_space_depth = 0.0;
     std::vector<SurfacePoint> points;
     std::vector<std::array<Vec3, 3>> facets;  // reference facets near the sphere (indentation)
     std::vector<double> penalty;     // k_q (Pa/m)
