@@ -183,10 +183,13 @@ void ContactBody::add_nonlinear_part(const Vector& u, Vector& f, const BlockSink
 }
 
 void ContactBody::internal_force(const Vector& u, Vector& f) const {
-  Vector inner;
-  body_->internal_force(inner_part(u), inner);
-  f = Vector::Zero(dof_count());
-  f.head(inner.size()) = inner;
+  // Called every explicit step: the body's part goes through kept buffers.
+  const Index n = body_->dof_count();
+  inner_u_ = u.head(n);
+  body_->internal_force(inner_u_, inner_f_);
+  f.resize(dof_count());
+  f.head(n) = inner_f_;
+  f.tail(dof_count() - n).setZero();
   add_nonlinear_part(u, f, nullptr);
 }
 

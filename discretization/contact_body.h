@@ -98,6 +98,7 @@ class ContactBody final : public DiscreteBody {
 
   std::unique_ptr<DiscreteBody> body_;
   std::vector<Sphere> spheres_;
+  mutable Vector inner_u_, inner_f_;  // internal_force's buffers (not for concurrent calls)
   bool explicit_ = false;
   bool static_ = false;  // a static run: the force scales with the load factor
   int dim_;

@@ -38,7 +38,7 @@ Vector pressing_state(const DiscreteBody& body, double lift, double sphere_drop)
   std::srand(5);
   for (Index n = 0; n + 1 < body.node_count(); ++n) {
     const Vec3 x = body.node_position(n);
-    u[dim * n + 2] = lift * x.z() / 0.01 * (1.0 - 40.0 * (x - Vec3(0.005, 0.005, 0.01)).squaredNorm());
+    u[dim * n + 2] = lift * x.z() / 0.01;
     u[dim * n] = 1e-5 * std::sin(300.0 * x.y());
   }
   u[dim * (body.node_count() - 1) + 2] = -sphere_drop;
