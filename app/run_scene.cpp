@@ -245,6 +245,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
                      now_seconds() - start);
     }
     summary["timing"]["solve_s"] = now_seconds() - loop_start;
+    run.body->add_diagnostics(report.counters);
     fill_report(summary, report);
     summary["status"] = "ok";
     write_file_atomically(summary_path, summary.dump(2));

@@ -53,6 +53,7 @@ class ContactBody final : public DiscreteBody {
   void external_force(double t, Vector& f) const override;
   std::vector<DirichletDof> dirichlet(double t) const override;
   std::optional<double> critical_time_step() const override { return body_->critical_time_step(); }
+  void add_diagnostics(std::map<std::string, double>& counters) const override { body_->add_diagnostics(counters); }
 
   std::vector<Index> select_nodes(const Selection& selection) const override { return body_->select_nodes(selection); }
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override { return body_->interpolation_at(x); }

@@ -4,6 +4,7 @@
 // Units: displacement m, force N, mass kg, time s.
 #include <array>
 #include <functional>
+#include <map>
 #include <optional>
 #include <span>
 #include <string>
@@ -186,6 +187,10 @@ class DiscreteBody {
     (void)index, (void)u;
     return std::nullopt;
   }
+
+  /// Figures of the discretization as it stands, into the summary's
+  /// `solver` counters (meshless: the moment matrices' condition numbers).
+  virtual void add_diagnostics(std::map<std::string, double>& counters) const { (void)counters; }
 
   /// The total force (N) that constraints imposed weakly (EFG penalty or
   /// Nitsche) on the boundary faces inside `selection` exert on the body at

@@ -131,6 +131,9 @@ struct SolveOptions {
   Integrator integrator = Integrator::implicit_euler;
   double dt = 0.001;       // s
   double duration = 1.0;   // s
+  /// Central differences run a dt above the critical step instead of refusing
+  /// it (the stability study looks for the true limit this way).
+  bool allow_unstable_dt = false;
   int load_steps = 1;      // static: load increments
   NewtonOptions newton;
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;

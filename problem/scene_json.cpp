@@ -117,6 +117,7 @@ json scene_to_json(const Scene& s) {
                 {"integrator", to_string(so.integrator)},
                 {"dt", so.dt},
                 {"duration", so.duration},
+                {"allow_unstable_dt", so.allow_unstable_dt},
                 {"load_steps", so.load_steps},
                 {"newton",
                  {{"tolerance", so.newton.tolerance},

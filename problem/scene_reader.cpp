@@ -228,7 +228,7 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   }
   if (f.is_null()) return;
   f.allow_only({"analysis", "integrator", "dt", "duration", "newton", "linear_solver", "petsc",
-                "linear_tolerance", "mass", "load_steps"});
+                "linear_tolerance", "mass", "load_steps", "allow_unstable_dt"});
   if (f.has("analysis")) s.analysis = f["analysis"].enumeration<Analysis>();
   if (f.has("integrator"))
     s.integrator = f["integrator"].enumeration<Integrator>();
@@ -238,6 +238,7 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   require_positive(f["duration"], s.duration, "duration > 0 (s)");
   if (s.analysis == Analysis::dynamic && s.dt > s.duration)
     f["dt"].out_of_range("dt <= duration (" + std::to_string(s.duration) + " s)");
+  if (f.has("allow_unstable_dt")) s.allow_unstable_dt = f["allow_unstable_dt"].boolean();
   if (f.has("load_steps")) s.load_steps = f["load_steps"].integer();
   if (s.load_steps < 1) f["load_steps"].out_of_range("load_steps >= 1");
   if (f.has("newton")) {

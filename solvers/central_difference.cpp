@@ -40,12 +40,13 @@ class CentralDifferenceStepper final : public Stepper {
     report.counters["critical_dt_s"] = critical_step_;
     if (element_bound_step)
       report.counters["critical_dt_element_bound_s"] = damped_critical_step(*element_bound_step, beta_);
-    if (options_.dt > critical_step_) {
+    if (options_.dt > critical_step_ && !options_.allow_unstable_dt) {
       std::ostringstream why;
       why << scene.file << ": key 'solve.dt': value " << options_.dt
           << " s is above the critical time step of central differences for this discretization and material, "
           << critical_step_ << " s (2 / omega_max by Lanczos" << (beta_ > 0 ? ", with stiffness damping" : "")
-          << "); expected dt <= " << critical_step_ << " s, or an implicit integrator";
+          << "); expected dt <= " << critical_step_ << " s, or an implicit integrator (or solve.allow_unstable_dt: true to "
+          << "run it anyway)";
       throw Error(why.str());
     }
   }

@@ -34,6 +34,16 @@ class MeshlessBody : public DiscreteBody {
     return domain_.surface_samples(region, points_per_direction);
   }
 
+  void add_diagnostics(std::map<std::string, double>& counters) const override {
+    const MomentConditioning c = domain_.conditioning();
+    counters["mls_condition_median"] = c.median;
+    counters["mls_condition_max"] = c.max;
+    if (domain_.enrichment()) {
+      counters["mls_condition_near_cut_max"] = c.near_cut_max;
+      counters["mls_condition_near_tip_max"] = c.near_tip_max;
+    }
+  }
+
   const MeshlessDomain& domain() const { return domain_; }
 
  protected:

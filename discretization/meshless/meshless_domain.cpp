@@ -121,6 +121,34 @@ bool MeshlessDomain::boundary_loads_touch(std::span<const Index> nodes) const {
   return false;
 }
 
+MomentConditioning MeshlessDomain::conditioning() const {
+  MomentConditioning c;
+  const std::vector<double>& k = at_nodes_.condition;
+  if (k.empty()) return c;
+  std::vector<double> sorted = k;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  c.median = sorted[sorted.size() / 2];
+  c.max = *std::max_element(k.begin(), k.end());
+  const CutEnrichment* cuts = enrichment();
+  if (!cuts) return c;
+  // The ends of each cut as it stands: a polyline's two end vertices, a
+  // strip's first and last edges (the blade's entry and its front).
+  std::vector<Vec3> tips;
+  for (Index i = 0; i < cuts->cut_count(); ++i) {
+    const CutSurface& s = cuts->surface(i);
+    const Index n = cuts->pieces(i);
+    if (n == 0) continue;
+    const std::vector<Index> ends = dimension() == 2 ? std::vector<Index>{0, n} : std::vector<Index>{0, 1, n, n + 1};
+    for (Index v : ends) tips.push_back(s.vertices[v]);
+  }
+  for (Index I = 0; I < nodes_.size(); ++I) {
+    if (cuts->enriches(I)) c.near_cut_max = std::max(c.near_cut_max, k[I]);
+    for (const Vec3& tip : tips)
+      if ((tip - nodes_.positions[I]).norm() <= nodes_.support[I]) c.near_tip_max = std::max(c.near_tip_max, k[I]);
+  }
+  return c;
+}
+
 double MeshlessDomain::mean_neighbors() const {
   const Index N = nodes_.size();
   return N ? static_cast<double>(at_nodes_.neighbours.index.size() - N) / N : 0.0;

@@ -30,6 +30,15 @@ struct BoundaryPoints {
   std::vector<double> weight;
 };
 
+/// Condition numbers of the scaled moment matrices at the nodes (DESIGN.md:
+/// watch them, near cuts and tips above all): a large one means a node's
+/// shape functions rest on few or nearly coplanar neighbours.
+struct MomentConditioning {
+  double median = 0.0, max = 0.0;  // over all nodes
+  double near_cut_max = 0.0;       // over the nodes whose weight a cut enriches
+  double near_tip_max = 0.0;       // over the nodes whose support holds an end of a cut's front
+};
+
 class MeshlessDomain {
  public:
   /// `box`: the domain when it is a box; `background`: a simplex mesh covering
@@ -60,6 +69,8 @@ class MeshlessDomain {
   /// The shape table at the nodes themselves (nodal integration points, output);
   /// with meshless.gradient: smoothed (nodal), its gradients are the cells' means.
   const ShapeTable& at_nodes() const { return at_nodes_; }
+
+  MomentConditioning conditioning() const;
 
   /// Mean number of other nodes whose support covers a node.
   double mean_neighbors() const;

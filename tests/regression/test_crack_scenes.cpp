@@ -125,6 +125,12 @@ TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
     for (std::string rule : {"grid", "grid-interpolated", "multiplicative", "visibility", "diffraction"}) {
       json s = run_ok("scenes/crack_kinked_2d.yaml", rule_overrides(method, rule), "kinked_" + method + "_" + rule);
       const double error = relative_error("kinked " + method + " " + rule, opening(s), reference);
+      // The summary reports the moment matrices' conditioning, near the cut apart.
+      const json& solver = s["solver"];
+      EXPECT_GE(solver["mls_condition_median"].get<double>(), 1.0) << method << " " << rule;
+      EXPECT_GE(solver["mls_condition_max"].get<double>(), solver["mls_condition_near_cut_max"].get<double>());
+      EXPECT_GE(solver["mls_condition_near_cut_max"].get<double>(), solver["mls_condition_near_tip_max"].get<double>());
+      EXPECT_GT(solver["mls_condition_near_tip_max"].get<double>(), 1.0) << method << " " << rule;
       if (rule.starts_with("grid")) {
         // efg meets the 3%; nodal integration with the MLS gradient at
         // the nodes does not (5-7% from 1 to 0.5 mm): the bound is what it

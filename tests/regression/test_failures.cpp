@@ -75,6 +75,42 @@ TEST(Failures, DivergingSolveStopsWithWhereAndWhyAndKeepsResultsReadable) {
     EXPECT_EQ(entry.path().string().find(".tmp"), std::string::npos) << "left behind: " << entry.path();
 }
 
+// Central differences told to run above their critical step: refused by
+// default, run when allowed, and then stopped by the divergence check with
+// the step and time, the rows so far kept.
+TEST(Failures, ExplicitRunAboveTheCriticalStepDivergesWithWhere) {
+  const char* beam = R"(
+name: unstable
+domain: {box: {min: [0, 0, 0], max: [0.05, 0.01, 0.01]}}
+material: {model: linear, young: 30000, poisson: 0.3, density: 1000}
+discretization: {method: fem, fem: {element: tet4, size: 0.0025}}
+boundary:
+  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}
+body_force: {gravity: [0, 0, -9.81]}
+solve: {analysis: dynamic, integrator: central-difference, dt: 0.0012, duration: 2.4}
+output: {vtk: false, probes: [{name: energy, field: energy}]}
+)";
+  const std::string dir = testing::output_directory("unstable_dt");
+  EXPECT_THROW(run_scene(testing::scene_from_text(beam, {"output.dir=" + dir}), {"", true}), Error);
+  std::string message;
+  try {
+    run_scene(testing::scene_from_text(beam, {"output.dir=" + dir, "solve.allow_unstable_dt=true"}), {"", true});
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("diverged"), std::string::npos) << message;
+  EXPECT_NE(message.find("central-difference step"), std::string::npos) << message;
+  std::ifstream in(dir + "/summary.json");
+  const json summary = json::parse(in);
+  EXPECT_EQ(summary["status"], "error");
+  EXPECT_GT(summary["solver"]["critical_dt_s"].get<double>(), 0.0);
+  EXPECT_LT(summary["solver"]["critical_dt_s"].get<double>(), 0.0012);
+  std::ifstream csv(dir + "/probes.csv");
+  int rows = 0;
+  for (std::string line; std::getline(csv, line);) ++rows;
+  EXPECT_GT(rows, 10);
+}
+
 TEST(Failures, StaleFactorPreconditioningGivesTheSameSolutionAsFreshSolves) {
   // A corotational block swinging under gravity: CHOLMOD reuses its factor as
   // a preconditioner, Eigen's LDL^T (no reuse for this comparison) and
