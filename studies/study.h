@@ -29,5 +29,6 @@ void run_study(const std::string& name, StudyOptions options);
 
 void hertz_study(const StudyOptions& options);
 void timing_study(const StudyOptions& options);
+void stability_study(const StudyOptions& options);
 
 }  // namespace kerf

@@ -74,6 +74,27 @@ void CsvTable::row(const std::vector<Json>& values) {
   out << "\n";
 }
 
+ProbeHistory read_probe_history(const std::string& run_dir) {
+  const std::string path = run_dir + "/probes.csv";
+  std::ifstream in(path);
+  KERF_CHECK(in, "cannot read ", path);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  ProbeHistory history;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    for (const std::string& name : names) {
+      KERF_CHECK(std::getline(row, cell, ','), path, ": a row shorter than the header: ", line);
+      history[name].push_back(std::stod(cell));
+    }
+  }
+  return history;
+}
+
 void plot(const std::string& script, const std::string& out_dir) {
   const std::string path = std::string(KERF_SOURCE_DIR) + "/studies/plots/" + script + ".py";
   const std::string command = "/usr/bin/python3 '" + path + "' '" + out_dir + "'";

@@ -3,6 +3,7 @@
 // next to the results, so any point of a study can be run again by hand),
 // progress lines, CSV tables, plots by Debian's python3, and claims.
 #include <nlohmann/json.hpp>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,11 @@ class CsvTable {
   std::string path_;
   std::size_t columns_;
 };
+
+/// A run's probes.csv as columns by name (time first), for studies that
+/// look at a whole history rather than the final values.
+using ProbeHistory = std::map<std::string, std::vector<double>>;
+ProbeHistory read_probe_history(const std::string& run_dir);
 
 /// Runs studies/plots/<script>.py on the study's folder with /usr/bin/python3.
 void plot(const std::string& script, const std::string& out_dir);
