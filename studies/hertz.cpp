@@ -21,76 +21,22 @@
 // its finest graded level, and better than at its coarsest; in quick mode
 // within 6% (tet4 also falls from a/2 to a/4). Direct nodal is reported only.
 #include <cmath>
-#include <sstream>
 
+#include "studies/study_hertz_problem.h"
 #include "studies/study_support.h"
 
 namespace kerf {
 namespace {
 
-constexpr double contact_radius = 1.0e-3;        // a (m)
-constexpr double sphere_radius = 10.0e-3;        // R (m)
-constexpr double young = 1.0e4, poisson = 0.3;   // Pa: soft tissue
-constexpr double finest_box = 1.5 * contact_radius;  // the finest box's edge
-constexpr int graded_levels = 8;                 // nested boxes: block edge 1.5 a 2^8 = 384 a
-constexpr double uniform_block = 8.0 * contact_radius;
-
-double hertz_indentation() { return contact_radius * contact_radius / sphere_radius; }
-
-/// The total force (N) that gives hertz_indentation() on a half-space.
-double hertz_force() {
-  const double e_star = young / (1.0 - poisson * poisson);
-  return 4.0 / 3.0 * e_star * std::sqrt(sphere_radius) * std::pow(hertz_indentation(), 1.5);
-}
+using namespace hertz;
 
 /// One method of the study and the finest spacings (a / n) it runs at.
 struct Method {
-  std::string label, method, element, gradient;
+  std::string label;
+  Discretization discretization;
   bool claimed;  // held to the bound (the paper's direct nodal gradients are reported only)
   std::vector<int> graded_full, graded_quick, uniform;
 };
-
-/// The scene: a quarter block of edge `block`, spacing `coarse` outside the
-/// refine boxes `refine` (YAML list items), the sphere touching the top face.
-std::string scene_text(const Method& d, double block, double coarse, const std::string& refine) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: hertz\n"
-    << "domain: {box: {min: [0, 0, 0], max: [" << block << ", " << block << ", " << block << "]}}\n"
-    << "material: {model: linear, young: " << young << ", poisson: " << poisson << "}\n"
-    << "discretization:\n"
-    << "  method: " << d.method << "\n"
-    << "  fem: {element: " << (d.element.empty() ? "tet4" : d.element) << ", size: " << coarse << "}\n"
-    << "  meshless: {spacing: " << coarse << ", gradient: " << (d.gradient.empty() ? "direct" : d.gradient) << "}\n"
-    << "  refine:" << (refine.empty() ? " []\n" : "\n" + refine)
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x]}\n"
-    << "  - {select: {plane: {axis: y, at: 0}}, fix: [y]}\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "contact:\n"
-    << "  - sphere: {center: [0, 0, " << block + sphere_radius << "], radius: " << sphere_radius << "}\n"
-    << "    force: [0, 0, " << -hertz_force() / 4.0 << "]\n"
-    << "solve: {analysis: static}\n"
-    << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: indent, contact: 0, field: indentation}\n"
-    << "    - {name: push, contact: 0, field: contact_force}\n";
-  return s.str();
-}
-
-/// Nested refine boxes at the contact: box k has edge finest_box 2^k and
-/// spacing h 2^k, so each coarser lattice falls on the finer one inside it.
-std::string graded_refine(double h, double block) {
-  std::ostringstream s;
-  s.precision(12);
-  for (int k = 0; k < graded_levels; ++k) {
-    const double edge = finest_box * std::ldexp(1.0, k);
-    s << "    - {box: {min: [0, 0, " << block - edge << "], max: [" << edge << ", " << edge << ", " << block
-      << "]}, size: " << h * std::ldexp(1.0, k) << "}\n";
-  }
-  return s.str();
-}
 
 }  // namespace
 
@@ -98,19 +44,19 @@ void hertz_study(const StudyOptions& options) {
   // 1. What runs. tet4 converges as h and needs a/12 for 2%; the others reach
   // it at a/4, where tet10 and EFG already take half a minute each.
   const std::vector<Method> methods{
-      {"fem_tet4", "fem", "tet4", "", true, {2, 4, 8, 12}, {2, 4}, {2, 3, 4}},
-      {"fem_tet10", "fem", "tet10", "", true, {2, 4}, {2}, {2}},
-      {"efg", "efg", "", "", true, {2, 4}, {2}, {2}},
-      {"nodal_smoothed", "nodal", "", "smoothed", true, {2, 4}, {2}, {2}},
-      {"nodal", "nodal", "", "direct", false, {2, 4}, {2}, {2}},
+      {"fem_tet4", {"fem", "tet4"}, true, {2, 4, 8, 12}, {2, 4}, {2, 3, 4}},
+      {"fem_tet10", {"fem", "tet10"}, true, {2, 4}, {2}, {2}},
+      {"efg", {"efg"}, true, {2, 4}, {2}, {2}},
+      {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, true, {2, 4}, {2}, {2}},
+      {"nodal", {"nodal", "tet4", "direct"}, false, {2, 4}, {2}, {2}},
   };
   auto graded = [&](const Method& m) { return options.quick ? m.graded_quick : m.graded_full; };
   auto uniform = [&](const Method& m) { return options.quick ? std::vector<int>{} : m.uniform; };
   int planned = 0;
   for (const Method& m : methods) planned += static_cast<int>(graded(m).size() + uniform(m).size());
   StudyRunner runner("hertz", options, planned);
-  runner.say("Hertz indentation " + std::to_string(hertz_indentation()) + " m under " +
-             std::to_string(hertz_force()) + " N (a quarter of it on the quarter model)");
+  runner.say("Hertz indentation " + std::to_string(indentation()) + " m under " + std::to_string(force()) +
+             " N (a quarter of it on the quarter model)");
 
   // 2. Run every point; a failed run is recorded, not fatal.
   CsvTable table(runner.out_dir() + "/hertz.csv", {"method", "family", "spacing_m", "a_over_h", "nodes", "dofs",
@@ -118,11 +64,11 @@ void hertz_study(const StudyOptions& options) {
   Json points = Json::array();
   auto record = [&](const Method& d, const std::string& family, int n, double h, const Json& summary) {
     const bool ok = summary.value("status", "") == "ok";
-    const double indentation = ok ? summary["probes"]["indent"]["indentation"].get<double>() : NAN;
-    const double error = 100.0 * (indentation - hertz_indentation()) / hertz_indentation();
+    const double depth = ok ? summary["probes"]["indent"]["indentation"].get<double>() : NAN;
+    const double error = 100.0 * (depth - indentation()) / indentation();
     Json point = {{"method", d.label}, {"family", family}, {"spacing_m", h}, {"a_over_h", n},
                   {"nodes", ok ? summary["counts"]["nodes"] : Json()}, {"dofs", ok ? summary["counts"]["dofs"] : Json()},
-                  {"indentation_m", ok ? Json(indentation) : Json()}, {"error_percent", ok ? Json(error) : Json()},
+                  {"indentation_m", ok ? Json(depth) : Json()}, {"error_percent", ok ? Json(error) : Json()},
                   {"setup_s", ok ? summary["timing"]["setup_s"] : Json()},
                   {"solve_s", ok ? summary["timing"]["solve_s"] : Json()},
                   {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}};
@@ -133,16 +79,13 @@ void hertz_study(const StudyOptions& options) {
   };
   for (const Method& d : methods) {
     for (int n : graded(d)) {
-      const double h = contact_radius / n;
-      const double block = finest_box * std::ldexp(1.0, graded_levels);
       const std::string label = "graded_" + d.label + "_a" + std::to_string(n);
-      record(d, "graded", n, h,
-             runner.run(label, scene_text(d, block, h * std::ldexp(1.0, graded_levels), graded_refine(h, block))));
+      record(d, "graded", n, contact_radius / n, runner.run(label, graded_scene(d.discretization, n)));
     }
     for (int n : uniform(d)) {
       const double h = contact_radius / n;
       const std::string label = "uniform_" + d.label + "_a" + std::to_string(n);
-      record(d, "uniform", n, h, runner.run(label, scene_text(d, uniform_block, h, "")));
+      record(d, "uniform", n, h, runner.run(label, scene(d.discretization, uniform_block, h, "")));
     }
   }
 
@@ -162,7 +105,7 @@ void hertz_study(const StudyOptions& options) {
                  {"plots", {"hertz.png"}},
                  {"quick", options.quick},
                  {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
-                            {"indentation_m", hertz_indentation()}, {"force_N", hertz_force()},
+                            {"indentation_m", indentation()}, {"force_N", force()},
                             {"young_Pa", young}, {"poisson", poisson}}},
                  {"bound_percent", bound},
                  {"finest_graded", finest},

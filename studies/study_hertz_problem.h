@@ -1,0 +1,37 @@
+#pragma once
+// The Hertz problem the `hertz` and `pareto` studies share: a quarter block
+// pressed by a rigid sphere with the force that gives a contact radius
+// a = R / 10 on a half-space (see studies/hertz.cpp for the whole setting).
+#include <string>
+
+namespace kerf::hertz {
+
+constexpr double contact_radius = 1.0e-3;        // a (m)
+constexpr double sphere_radius = 10.0e-3;        // R (m)
+constexpr double young = 1.0e4, poisson = 0.3;   // Pa: soft tissue
+constexpr double finest_box = 1.5 * contact_radius;  // the finest box's edge
+constexpr int graded_levels = 8;                 // nested boxes: block edge 1.5 a 2^8 = 384 a
+constexpr double graded_block = finest_box * (1 << graded_levels);
+constexpr double uniform_block = 8.0 * contact_radius;
+
+/// Hertz's indentation d = a^2 / R (m).
+double indentation();
+/// The total force (N) that gives indentation() on a half-space.
+double force();
+
+/// A discretization of the block: method, FEM element, meshless gradient.
+struct Discretization {
+  std::string method, element = "tet4", gradient = "direct";
+};
+
+/// The scene: a quarter block of edge `block`, spacing `coarse` outside the
+/// refine boxes `refine` (YAML list items), the sphere touching the top face;
+/// probes `indent` (indentation) and `push` (contact force).
+std::string scene(const Discretization& d, double block, double coarse, const std::string& refine);
+
+/// The graded scene whose finest spacing is a / n: nested refine boxes at the
+/// contact, box k of edge finest_box 2^k and spacing h 2^k, so each coarser
+/// lattice falls on the finer one inside it, out to graded_block.
+std::string graded_scene(const Discretization& d, int n);
+
+}  // namespace kerf::hertz
