@@ -30,5 +30,6 @@ void run_study(const std::string& name, StudyOptions options);
 void hertz_study(const StudyOptions& options);
 void timing_study(const StudyOptions& options);
 void stability_study(const StudyOptions& options);
+void pareto_study(const StudyOptions& options);
 
 }  // namespace kerf

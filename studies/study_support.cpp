@@ -24,7 +24,13 @@ StudyRunner::StudyRunner(std::string study, const StudyOptions& options, int pla
 
 Json StudyRunner::run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides) {
   const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
-  write_file_atomically(scene_file, yaml);
+  std::string header;  // how to run the point again by hand
+  if (!overrides.empty()) {
+    header = "# run with: kerf run " + label + ".yaml";
+    for (const std::string& o : overrides) header += " --set '" + o + "'";
+    header += "\n";
+  }
+  write_file_atomically(scene_file, header + yaml);
   ++done_;
   const double start = now_seconds();
   Json summary;
