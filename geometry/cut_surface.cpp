@@ -166,6 +166,16 @@ CutRegion cut_region(const CutSurface& cut, Index first, Index last, const CutFr
     r.piece = piece;
     if (t < t0) r.d_plus = t0 - t, r.d_plus_gradient = -frame.axis[0];
     if (t > tn) r.d_plus = t - tn, r.d_plus_gradient = frame.axis[0];
+    if (r.d_plus > 0.0) {
+      // Beyond an end, s is measured along the common normal from that end
+      // vertex, not from the end segment's own line: a zigzag's last segment
+      // turns with every new piece, and its line would move the nodes ahead
+      // of the tip from side to side (each flip mirrors a node's weight).
+      const Vec3& end = cut.vertices[t < t0 ? first : last];
+      r.s = frame.normal.dot(x - end);
+      r.s_gradient = frame.normal;
+      return r;
+    }
   } else {
     // The common plane's coordinates; the projected triangles keep their winding.
     auto in_plane = [&](const Vec3& p) {

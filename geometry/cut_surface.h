@@ -58,7 +58,9 @@ CutFrame common_frame(const CutSurface& cut, Index first, Index last);
 /// whose projection holds x's projection (else the nearest projected piece),
 /// d+ = distance of x's projection to the projected pieces (0 over them; 2D:
 /// the modified d1+ of eq. 23, measured from the two ends only), and
-/// s = normal . (x - corner) of that piece. Gradients in 1/1 (m/m).
+/// s = normal . (x - corner) of that piece; in 2D beyond the ends (d+ > 0),
+/// s = common normal . (x - end vertex), so that nodes ahead of a zigzag's
+/// tip keep their side as it grows. Gradients in 1/1 (m/m).
 struct CutRegion {
   Index piece = 0;
   double d_plus = 0.0;

@@ -79,17 +79,16 @@ Vec3 EnrichmentGrid::lattice_origin() const {
 
 EnrichmentGrid::Column EnrichmentGrid::column_at(const Vec3& x) const {
   const CutRegion r = cut_region(*cut_, 0, pieces_, frame_, x);
-  return {r.piece, r.d_plus, r.d_plus_gradient};
+  return {r.piece, r.d_plus, r.d_plus_gradient, r.s_gradient, r.s_gradient.dot(x) - r.s};
 }
 
 PhiValue EnrichmentGrid::phi_in(const Column& c, const Vec3& x) const {
-  const CutPiece& p = cut_->pieces[c.piece];
   CutRegion r;
   r.piece = c.piece;
   r.d_plus = c.d_plus;
   r.d_plus_gradient = c.d_plus_gradient;
-  r.s = p.normal.dot(x - p.corner[0]);
-  r.s_gradient = p.normal;
+  r.s = c.s_normal.dot(x) - c.s_offset;
+  r.s_gradient = c.s_normal;
   return phi_of(r);
 }
 
@@ -130,10 +129,9 @@ PhiValue EnrichmentGrid::interpolated(const Vec3& x) const {
 }
 
 bool EnrichmentGrid::same(const Column& a, const Column& b, const Vec3& base) const {
-  const CutPiece &pa = cut_->pieces[a.piece], &pb = cut_->pieces[b.piece];
   const double tolerance = 1e-12 * std::max(cut_->extent, spacing_);
-  const bool same_plane = a.piece == b.piece || ((pa.normal - pb.normal).norm() < 1e-12 &&
-                                                 std::abs(pa.normal.dot(pa.corner[0] - pb.corner[0])) < tolerance);
+  const bool same_plane =
+      (a.s_normal - b.s_normal).norm() < 1e-12 && std::abs(a.s_offset - b.s_offset) < tolerance;
   if (same_plane) {
     if (std::abs(a.d_plus - b.d_plus) > tolerance) return false;
     return a.d_plus == 0.0 || (a.d_plus_gradient - b.d_plus_gradient).norm() < 1e-12;
@@ -143,8 +141,8 @@ bool EnrichmentGrid::same(const Column& a, const Column& b, const Vec3& base) co
   // holds no point there.
   if (a.d_plus != 0.0 || b.d_plus != 0.0) return false;
   const Vec3& along = axes_[dim_ - 1];
-  auto crossing = [&](const CutPiece& p) { return -p.normal.dot(base - p.corner[0]) / p.normal.dot(along); };
-  const double z0 = std::min(crossing(pa), crossing(pb)), z1 = std::max(crossing(pa), crossing(pb));
+  auto crossing = [&](const Column& c) { return (c.s_offset - c.s_normal.dot(base)) / c.s_normal.dot(along); };
+  const double z0 = std::min(crossing(a), crossing(b)), z1 = std::max(crossing(a), crossing(b));
   const double bottom = low_[dim_ - 1], top = bottom + (count_[dim_ - 1] - 1) * spacing_;
   return z1 < bottom - spacing_ || z0 > top + spacing_;
 }

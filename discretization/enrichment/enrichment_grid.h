@@ -61,6 +61,10 @@ class EnrichmentGrid {
     Index piece = 0;
     double d_plus = 0.0;
     Vec3 d_plus_gradient = Vec3::Zero();
+    // The plane s is measured from: s(x) = s_normal . x - s_offset (the
+    // piece's plane, or beyond a 2D cut's ends the common normal's through the end).
+    Vec3 s_normal = Vec3::Zero();
+    double s_offset = 0.0;
   };
   /// The lattice coordinates of x (lattice axes, origin at the anchor).
   Vec3 coordinates(const Vec3& x) const;

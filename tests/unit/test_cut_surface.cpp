@@ -70,6 +70,33 @@ TEST(CutSurface, RegionsAndDistanceFromTheEndsIn2D) {
   EXPECT_NEAR(r.d_plus, 0.5, 1e-12);
 }
 
+// Ahead of a zigzag's tip, s is measured along the common normal from the
+// end vertex: a point farther from the cut's line than the zigzag's amplitude
+// keeps its side as pieces turning up and down appear (from the end
+// segment's own line, steep here, it flipped with each piece), and s keeps
+// its sign across the end's boundary t = t_end, where d+ = 0 makes phi = sign(s).
+TEST(CutSurface, AheadOfAZigzagTipAPointKeepsItsSide) {
+  std::vector<Vec3> v;
+  for (int k = 0; k <= 12; ++k) v.push_back(Vec3(0.1 * k, k == 0 ? 0.0 : (k % 2 ? 0.1 : -0.1), 0));
+  const CutSurface c = cut_surface(2, v, std::vector<double>(v.size(), 0.0), "");
+  for (Index pieces = 2; pieces <= 12; ++pieces) {
+    const CutFrame f = common_frame(c, 0, pieces);
+    for (double y : {0.25, -0.25}) {
+      const CutRegion r = cut_region(c, 0, pieces, f, Vec3(v[pieces].x() + 0.3, y, 0));
+      EXPECT_GT(r.d_plus, 0.0);
+      EXPECT_EQ(r.s > 0.0, y > 0.0) << pieces << " pieces, y = " << y;
+    }
+    for (double up : {0.05, -0.05}) {
+      const Vec3 on = v[pieces] + up * f.normal;
+      const CutRegion before = cut_region(c, 0, pieces, f, on - 1e-9 * f.axis[0]);
+      const CutRegion after = cut_region(c, 0, pieces, f, on + 1e-9 * f.axis[0]);
+      EXPECT_EQ(before.d_plus, 0.0);
+      EXPECT_GT(after.d_plus, 0.0);
+      EXPECT_EQ(before.s > 0.0, after.s > 0.0) << pieces << " pieces, " << up;
+    }
+  }
+}
+
 TEST(CutSurface, CrossingsAndDistances) {
   CutSurface c = cut_surface(3, {Vec3(0, 0, 0), Vec3(0, 1, 0), Vec3(1, 0, 0), Vec3(1, 1, 0)}, {0, 0, 0, 0}, "");
   EXPECT_TRUE(segment_crosses_cut(c, 0, 2, Vec3(0.5, 0.5, -1), Vec3(0.5, 0.5, 1)));
