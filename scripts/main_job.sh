@@ -20,5 +20,6 @@ done
 readme=$(/usr/bin/python3 scripts/headline_table.py "$out")
 echo
 echo "Headline figures and plots: $readme"
-echo "ParaView: $out/scenes/<scene>/<scene>.pvd; every run's summary.json beside it."
+echo "ParaView: $out/scenes/<scene>/<scene>.pvd, the cut study's $out/cut/runs/<way>/cut.pvd; every run's"
+echo "summary.json beside it."
 echo "Full study results (committed): results/README.md"
