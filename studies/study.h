@@ -31,5 +31,6 @@ void hertz_study(const StudyOptions& options);
 void timing_study(const StudyOptions& options);
 void stability_study(const StudyOptions& options);
 void pareto_study(const StudyOptions& options);
+void cut_study(const StudyOptions& options);
 
 }  // namespace kerf
