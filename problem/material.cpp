@@ -137,7 +137,7 @@ Mat3 MaterialLaw::stress(const Mat3& F) const {
   return Mat3::Zero();
 }
 
-void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
+void MaterialLaw::exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
   const double lambda = lame_.lambda, mu = lame_.mu;
   const Mat3 I = Mat3::Identity();
   switch (model_) {
@@ -188,6 +188,18 @@ void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
       return;
     }
   }
+}
+
+void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
+  exact_tangent(F, P, dPdF);
+  if (!definite_tangent_ || is_linear()) return;
+  dPdF = 0.5 * (dPdF + dPdF.transpose()).eval();
+  // Cheap test first: a Cholesky of the slightly shifted matrix succeeds when
+  // nothing needs projecting (rigid rotations leave exact zeros at rest).
+  const double shift = 1e-10 * std::abs(dPdF.trace()) + 1e-300;
+  if (Eigen::LLT<Mat9>(dPdF + shift * Mat9::Identity()).info() == Eigen::Success) return;
+  const Eigen::SelfAdjointEigenSolver<Mat9> eigen(dPdF);
+  dPdF = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
 }
 
 Mat3 MaterialLaw::cauchy_stress(const Mat3& F) const {

@@ -20,11 +20,18 @@ struct Lame {
 class MaterialLaw {
  public:
   MaterialLaw(MaterialModel model, double young, double poisson);
-  explicit MaterialLaw(const Material& m) : MaterialLaw(m.model, m.young, m.poisson) {}
+  /// `definite_tangent`: stress_and_tangent projects dP/dF to positive semidefinite.
+  explicit MaterialLaw(const Material& m, bool definite_tangent = false)
+      : MaterialLaw(m.model, m.young, m.poisson) {
+    definite_tangent_ = definite_tangent;
+  }
 
   double energy(const Mat3& F) const;
   Mat3 stress(const Mat3& F) const;
-  /// P and dP/dF together (cheaper than apart for the nonlinear models).
+  /// P and dP/dF together (cheaper than apart for the nonlinear models); with
+  /// a definite tangent, dP/dF with its negative eigenvalues set to zero where
+  /// it has any (corotational, StVK and neo-Hookean tangents are indefinite
+  /// under compression, which stops Cholesky; Newton is then slower there).
   void stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const;
   /// Cauchy stress sigma = P F^T / det F.
   Mat3 cauchy_stress(const Mat3& F) const;
@@ -37,7 +44,11 @@ class MaterialLaw {
   double p_wave_modulus() const { return lame_.lambda + 2.0 * lame_.mu; }
 
  private:
+  /// The exact dP/dF.
+  void exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const;
+
   MaterialModel model_;
+  bool definite_tangent_ = false;
   Lame lame_;
 };
 

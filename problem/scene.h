@@ -32,6 +32,7 @@ enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
 enum class MassKind { lumped, consistent };
+enum class TangentKind { exact, definite };
 enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
 enum class GridLookup { exact, interpolated };
 enum class FemCut { remesh, remove };
@@ -140,6 +141,9 @@ struct SolveOptions {
   std::string petsc = "-ksp_type cg -pc_type gamg";
   double linear_tolerance = 1.0e-10;  // relative residual of iterative linear solves
   MassKind mass = MassKind::consistent;  // implicit runs; explicit always lumps
+  /// The material tangent implicit solves assemble: exact, or made positive
+  /// semidefinite point by point (nonlinear materials under compression).
+  TangentKind tangent = TangentKind::exact;
 };
 
 struct Probe {
@@ -194,6 +198,7 @@ KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");
 KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
+KERF_ENUM_NAMES(TangentKind, "exact", "definite");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
 KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
 KERF_ENUM_NAMES(FemCut, "remesh", "remove");

@@ -126,7 +126,8 @@ json scene_to_json(const Scene& s) {
                 {"linear_solver", to_string(so.linear_solver)},
                 {"petsc", so.petsc},
                 {"linear_tolerance", so.linear_tolerance},
-                {"mass", to_string(so.mass)}};
+                {"mass", to_string(so.mass)},
+                {"tangent", to_string(so.tangent)}};
   json probes = json::array();
   for (const auto& p : s.output.probes) probes.push_back(probe_json(p, dim));
   j["output"] = {{"dir", s.output.dir},

@@ -228,7 +228,7 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   }
   if (f.is_null()) return;
   f.allow_only({"analysis", "integrator", "dt", "duration", "newton", "linear_solver", "petsc",
-                "linear_tolerance", "mass", "load_steps", "allow_unstable_dt"});
+                "linear_tolerance", "mass", "load_steps", "allow_unstable_dt", "tangent"});
   if (f.has("analysis")) s.analysis = f["analysis"].enumeration<Analysis>();
   if (f.has("integrator"))
     s.integrator = f["integrator"].enumeration<Integrator>();
@@ -258,6 +258,7 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
     f["linear_tolerance"].out_of_range("0 < linear_tolerance < 1 (relative residual)");
   if (f.has("mass")) s.mass = f["mass"].enumeration<MassKind>();
+  if (f.has("tangent")) s.tangent = f["tangent"].enumeration<TangentKind>();
 }
 
 Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {

@@ -44,7 +44,8 @@ class CholmodSolver final : public LinearSolver {
       std::ostringstream why;
       why << "cholmod: the matrix is not positive definite (pivot " << factor_->minor << " of " << A.rows()
           << " failed): the body is singular (not enough constraints to remove rigid motion?) or the "
-             "material became unstable";
+             "material became unstable (a nonlinear material's tangent turns indefinite under compression: "
+             "solve.tangent: definite assembles it made positive semidefinite)";
       return LinearSolverStatus::failure(why.str());
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");

@@ -55,7 +55,7 @@ FemBody::FemBody(const Scene& scene, Mesh mesh)
       schedule_(schedule_cells(mesh_, omp_get_max_threads())),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
       locator_(mesh_),
-      law_(scene.material),
+      law_(scene.material, scene.solve.tangent == TangentKind::definite),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
   auto box = bounding_box(mesh_);

@@ -48,7 +48,7 @@ class MeshlessBody : public DiscreteBody {
 
  protected:
   MeshlessBody(const Scene& scene, MeshlessDomain domain)
-      : domain_(std::move(domain)), law_(scene.material), density_(scene.material.density) {}
+      : domain_(std::move(domain)), law_(scene.material, scene.solve.tangent == TangentKind::definite), density_(scene.material.density) {}
 
   MeshlessDomain domain_;
   MaterialLaw law_;

@@ -2,6 +2,7 @@
 // derivative of the stress (central finite differences), objectivity, rest state.
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/SVD>
 
@@ -81,6 +82,30 @@ TEST(Material, NonlinearModelsAreObjective) {
     MaterialLaw law(m, 1.0e6, 0.3);
     EXPECT_NEAR(law.energy(R * F), law.energy(F), 1e-10 * law.energy(F)) << to_string(m);
     EXPECT_LT((law.stress(R * F) - R * law.stress(F)).norm(), 1e-9 * law.stress(F).norm()) << to_string(m);
+  }
+}
+
+// solve.tangent: definite. Under strong compression the exact tangents of the
+// nonlinear models have negative eigenvalues; the definite one has none, and
+// where the exact one is already positive semidefinite (a stretch) it is the exact one.
+TEST(Material, DefiniteTangentIsTheExactOneWhereThatIsSemidefinite) {
+  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+    const Material material{m, 1.0e6, 0.3, 1000.0, 0.0, 0.0};
+    const MaterialLaw exact(material), definite(material, true);
+    Mat3 P, P_definite;
+    Mat9 C, C_definite;
+    const Mat3 squeezed = Eigen::AngleAxisd(0.4, Vec3(1, 1, 0).normalized()).toRotationMatrix() *
+                          Vec3(0.45, 0.5, 1.1).asDiagonal();
+    exact.stress_and_tangent(squeezed, P, C);
+    definite.stress_and_tangent(squeezed, P_definite, C_definite);
+    const Mat9 symmetric = 0.5 * (C + C.transpose());
+    EXPECT_LT(Eigen::SelfAdjointEigenSolver<Mat9>(symmetric).eigenvalues().minCoeff(), -1e-3 * C.norm()) << to_string(m);
+    EXPECT_GT(Eigen::SelfAdjointEigenSolver<Mat9>(C_definite).eigenvalues().minCoeff(), -1e-9 * C.norm()) << to_string(m);
+    EXPECT_EQ(P, P_definite);
+    const Mat3 stretched = Vec3(1.1, 1.05, 1.02).asDiagonal();
+    exact.stress_and_tangent(stretched, P, C);
+    definite.stress_and_tangent(stretched, P_definite, C_definite);
+    EXPECT_LT((C_definite - 0.5 * (C + C.transpose())).norm(), 1e-12 * C.norm()) << to_string(m);
   }
 }
 
