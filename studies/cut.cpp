@@ -12,9 +12,10 @@
 // (y) in 2 mm moves from t = 0.1 s, each move a new pair of strip triangles.
 // Meshless: nodal integration, central differences; FEM: tet4, implicit
 // Euler with one linearised solve a step (SOFA's scheme); both at 0.25 ms,
-// within the nodal run's critical step at the full mode's 3 mm spacing. (At
-// E = 10 kPa the remeshed FEM body's corotational tangent turned indefinite a
-// few moves in: CHOLMOD stopped it; the remove and meshless runs went on.) An uncut nodal run gives the sag without the cut. Each run writes
+// within the nodal run's critical step at the full mode's 3 mm spacing. FEM
+// assembles the definite tangent (solve.tangent: definite): with the exact
+// one, the elements squeezed next to a remeshed cut made the matrix
+// indefinite a few moves in and CHOLMOD stopped the run. An uncut nodal run gives the sag without the cut. Each run writes
 // a ParaView series (runs/<label>/cut.pvd: the body, the cut surface with its
 // opening, and for the grid the Enrichment Grid's phi).
 // Measured: each update's time (the grid's shape functions, a remesh with
@@ -70,7 +71,7 @@ std::string scene_text(const Way& w, double spacing, double duration, int vtk_ev
       << "    enrichment: grid\n"
       << "    fem: " << (w.fem.empty() ? "remesh" : w.fem) << "\n";
   s << "solve: {analysis: dynamic, integrator: " << (w.method == "fem" ? "implicit-euler" : "central-difference")
-    << ", dt: 0.00025, duration: " << duration << ", newton: {max_iterations: 1}}\n"
+    << ", dt: 0.00025, duration: " << duration << ", newton: {max_iterations: 1}, tangent: definite}\n"
     << "output:\n"
     << "  vtk: " << (vtk_every > 0 ? "{every: " + std::to_string(vtk_every) + "}" : std::string("false")) << "\n"
     << "  probes:\n"
