@@ -16,7 +16,7 @@
 // (results/crack_opening.md compares it 1.5 mm off the faces).
 // Claims: every point ran; every method's most accurate point is within 6%
 // of Hertz and 5% of the crack reference; in full mode each method's Hertz
-// error falls from its coarsest to its finest level.
+// error falls from its coarsest to its finest level (direct nodal: reported only).
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -206,7 +206,9 @@ void pareto_study(const StudyOptions& options) {
                           }))->error_percent;
       check_claim(best < bound, problem + ": " + method + "'s most accurate point is within " +
                                     std::to_string(bound) + " % (it is " + std::to_string(best) + " %)");
-      if (problem == "hertz" && series.size() > 1)
+      // The paper's direct nodal gradients break down on the graded lattice at
+      // a/4 (results/README.md, Hertz): reported, not claimed to converge.
+      if (problem == "hertz" && series.size() > 1 && method != "nodal")
         check_claim(series.back()->error_percent < series.front()->error_percent,
                     "hertz: " + method + "'s error falls from its coarsest to its finest level");
     }
