@@ -236,7 +236,9 @@ void stability_study(const StudyOptions& options) {
     };
     const bool at_estimate = stable(1.0);
     double lo = at_estimate ? 1.0 : 0.5, hi = at_estimate ? 2.0 : 1.0;
-    if (at_estimate ? stable(hi) : !stable(lo)) (at_estimate ? lo : hi) = NAN;  // outside [0.5, 2]: reported as such
+    // A limit outside [0.5, 2] leaves the far end unknown (null in the results).
+    if (at_estimate && stable(hi)) lo = hi, hi = NAN;
+    if (!at_estimate && !stable(lo)) hi = lo, lo = NAN;
     for (int k = 0; k < bisections && std::isfinite(lo) && std::isfinite(hi); ++k) {
       const double mid = 0.5 * (lo + hi);
       (stable(mid) ? lo : hi) = mid;
