@@ -22,22 +22,26 @@ def number(value):
     return value if isinstance(value, (int, float)) else math.nan
 
 
+def paired_bars(ax, cases, left, right, left_label, right_label, rotation=0):
+    """Two bars per case (left and right values), the cases named under them."""
+    x = range(len(cases))
+    ax.bar([i - 0.2 for i in x], [number(v) for v in left], 0.4, label=left_label)
+    ax.bar([i + 0.2 for i in x], [number(v) for v in right], 0.4, label=right_label)
+    ax.set_xticks(list(x))
+    ax.set_xticklabels(cases, rotation=rotation, fontsize=8)
+
+
 fig, axes = plt.subplots(2, 2, figsize=(12, 8.5))
 
 # Critical steps: largest stable and first unstable dt over the Lanczos estimate.
 ax = axes[0][0]
 critical = study["critical_step"]
 methods = list(critical)
-x = range(len(methods))
-ax.bar([i - 0.2 for i in x], [number(critical[m]["largest_stable_factor"]) for m in methods], 0.4,
-       label="largest stable dt")
-ax.bar([i + 0.2 for i in x], [number(critical[m]["first_unstable_factor"]) for m in methods], 0.4,
-       label="first unstable dt")
+paired_bars(ax, methods, [critical[m]["largest_stable_factor"] for m in methods],
+            [critical[m]["first_unstable_factor"] for m in methods], "largest stable dt", "first unstable dt", 20)
 bounds = [number(critical[m]["element_bound_s"]) / critical[m]["estimate_s"] for m in methods]
-ax.plot(list(x), bounds, "k_", markersize=18, label="FEM element bound")
+ax.plot(range(len(methods)), bounds, "k_", markersize=18, label="FEM element bound")
 ax.axhline(1.0, color="grey", lw=0.8, ls=":")
-ax.set_xticks(list(x))
-ax.set_xticklabels(methods, rotation=20, fontsize=8)
 ax.set_ylabel("dt / critical-step estimate (Lanczos)")
 ax.set_title("Central differences: where stability ends")
 ax.legend(fontsize=7)
@@ -65,14 +69,10 @@ ax.legend(fontsize=7)
 ax = axes[1][0]
 zigzag = study["zigzag"]
 rules = list(zigzag)
-x = range(len(rules))
-ax.bar([i - 0.2 for i in x], [number(zigzag[r]["condition_near_cut_max"]) for r in rules], 0.4,
-       label="max condition, enriched nodes")
-ax.bar([i + 0.2 for i in x], [number(zigzag[r]["growing_mechanical_over_work"]) for r in rules], 0.4,
-       label="growing cut: max (K + U) / max work")
+paired_bars(ax, rules, [zigzag[r]["condition_near_cut_max"] for r in rules],
+            [zigzag[r]["growing_mechanical_over_work"] for r in rules], "max condition, enriched nodes",
+            "growing cut: max (K + U) / max work")
 ax.set_yscale("log")
-ax.set_xticks(list(x))
-ax.set_xticklabels(rules, fontsize=8)
 ax.set_title("200-piece zigzag cut (nodal, 2D)")
 ax.legend(fontsize=7)
 
@@ -80,13 +80,9 @@ ax.legend(fontsize=7)
 ax = axes[1][1]
 locking = study["locking"]
 methods = [m for m in locking if isinstance(locking[m], dict)]
-x = range(len(methods))
-for offset, nu in ((-0.2, "0.3"), (0.2, "0.49")):
-    ax.bar([i + offset for i in x], [number(locking[m]["deflection_over_reference_nu" + nu]) for m in methods], 0.4,
-           label=f"nu = {nu}")
+paired_bars(ax, methods, [locking[m]["deflection_over_reference_nu0.3"] for m in methods],
+            [locking[m]["deflection_over_reference_nu0.49"] for m in methods], "nu = 0.3", "nu = 0.49", 20)
 ax.axhline(1.0, color="grey", lw=0.8, ls=":")
-ax.set_xticks(list(x))
-ax.set_xticklabels(methods, rotation=20, fontsize=8)
 ax.set_ylabel("tip deflection / tet10 reference")
 ax.set_title("Near-incompressible locking (end-loaded cantilever)")
 ax.legend(fontsize=7)
