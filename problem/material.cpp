@@ -82,8 +82,8 @@ Lame Lame::from_young_poisson(double young, double poisson) {
   return l;
 }
 
-MaterialLaw::MaterialLaw(MaterialModel model, double young, double poisson)
-    : model_(model), lame_(Lame::from_young_poisson(young, poisson)) {}
+MaterialLaw::MaterialLaw(MaterialModel model, double young, double poisson, bool definite_tangent)
+    : model_(model), lame_(Lame::from_young_poisson(young, poisson)), definite_tangent_(definite_tangent) {}
 
 double MaterialLaw::energy(const Mat3& F) const {
   const double lambda = lame_.lambda, mu = lame_.mu;

@@ -19,12 +19,10 @@ struct Lame {
 /// A material point law: a small value type; the model is chosen once.
 class MaterialLaw {
  public:
-  MaterialLaw(MaterialModel model, double young, double poisson);
   /// `definite_tangent`: stress_and_tangent projects dP/dF to positive semidefinite.
+  MaterialLaw(MaterialModel model, double young, double poisson, bool definite_tangent = false);
   explicit MaterialLaw(const Material& m, bool definite_tangent = false)
-      : MaterialLaw(m.model, m.young, m.poisson) {
-    definite_tangent_ = definite_tangent;
-  }
+      : MaterialLaw(m.model, m.young, m.poisson, definite_tangent) {}
 
   double energy(const Mat3& F) const;
   Mat3 stress(const Mat3& F) const;
@@ -48,8 +46,8 @@ class MaterialLaw {
   void exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const;
 
   MaterialModel model_;
-  bool definite_tangent_ = false;
   Lame lame_;
+  bool definite_tangent_;
 };
 
 /// R of the polar decomposition F = R S (a proper rotation; S symmetric).

@@ -398,13 +398,17 @@ Scene parse_scene(const std::string& yaml_text, const std::string& file, const s
   return build_scene(root, file, directory, overrides);
 }
 
-Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
+std::string read_scene_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   KERF_CHECK(in, path, ": cannot open the scene file");
   std::stringstream text;
   text << in.rdbuf();
+  return text.str();
+}
+
+Scene read_scene(const std::string& path, const std::vector<std::string>& overrides) {
   fs::path directory = fs::path(path).parent_path();
-  return parse_scene(text.str(), path, directory.empty() ? "." : directory.string(), overrides);
+  return parse_scene(read_scene_text(path), path, directory.empty() ? "." : directory.string(), overrides);
 }
 
 }  // namespace kerf

@@ -11,6 +11,8 @@ namespace kerf {
 
 /// `overrides` are "dotted.key=value" strings; values are parsed as YAML.
 Scene read_scene(const std::string& path, const std::vector<std::string>& overrides = {});
+/// The scene file's text (a study runs it again with its own overrides).
+std::string read_scene_text(const std::string& path);
 
 /// Same, from text; `file` names it in messages and relative paths start at `directory`.
 Scene parse_scene(const std::string& yaml_text, const std::string& file,

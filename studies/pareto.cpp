@@ -18,11 +18,14 @@
 // of Hertz and 5% of the crack reference; in full mode each method's Hertz
 // error falls from its coarsest to its finest level (direct nodal: reported only).
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <fstream>
+#include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "core/check.h"
+#include "problem/scene_reader.h"
 #include "studies/study_hertz_problem.h"
 #include "studies/study_support.h"
 
@@ -47,14 +50,6 @@ std::array<double, 2> opening(const Json& summary) {
   const Json& p = summary["probes"];
   return {p["upper_face"]["displacement"][0].get<double>() - p["lower_face"]["displacement"][0].get<double>(),
           p["upper_face"]["displacement"][1].get<double>() - p["lower_face"]["displacement"][1].get<double>()};
-}
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  KERF_CHECK(in, "cannot read ", path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
 }
 
 /// Indices of the points no other point beats in both wall time and error, fastest first.
@@ -120,7 +115,7 @@ void pareto_study(const StudyOptions& options) {
   std::vector<Point> points;
   for (const HertzMethod& m : hertz_methods)
     for (int n : m.levels) {
-      Point p{"hertz", m.label, static_cast<double>(n)};
+      Point p{"hertz", m.label, static_cast<double>(n), Json(), NAN, NAN};
       p.summary = runner.run("hertz_" + m.label + "_a" + std::to_string(n), hertz::graded_scene(m.discretization, n));
       if (p.summary.value("status", "") == "ok") {
         const double depth = p.summary["probes"]["indent"]["indentation"].get<double>();
@@ -129,7 +124,7 @@ void pareto_study(const StudyOptions& options) {
       }
       points.push_back(p);
     }
-  const std::string crack_scene = read_text(std::string(KERF_SOURCE_DIR) + "/scenes/crack_plate_2d.yaml");
+  const std::string crack_scene = read_scene_text(std::string(KERF_SOURCE_DIR) + "/scenes/crack_plate_2d.yaml");
   const Json reference = runner.run(
       "crack_reference", crack_scene,
       {"discretization.method=fem", "discretization.fem.element=tri6", "discretization.fem.size=0.0005",
@@ -144,7 +139,7 @@ void pareto_study(const StudyOptions& options) {
       overrides.push_back(m.label.starts_with("fem") ? "discretization.fem.size=" + h
                                                      : "discretization.meshless.spacing=" + h);
       overrides.push_back("output.vtk=false");
-      Point p{"crack", m.label, std::stod(h)};
+      Point p{"crack", m.label, std::stod(h), Json(), NAN, NAN};
       p.summary = runner.run("crack_" + m.label + "_h" + h, crack_scene, overrides);
       if (p.summary.value("status", "") == "ok") {
         const std::array<double, 2> delta = opening(p.summary);
