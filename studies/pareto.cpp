@@ -14,9 +14,11 @@
 // error) is written to pareto.json. `fem: remove` is left out of the crack:
 // its crack is a gap a cell wide, whose faces are not where the others' are
 // (results/crack_opening.md compares it 1.5 mm off the faces).
-// Claims: every point ran; every method's most accurate point is within 6%
-// of Hertz and 5% of the crack reference; in full mode each method's Hertz
-// error falls from its coarsest to its finest level (direct nodal: reported only).
+// Claims: every point ran; every method at its finest level is within 6% of
+// Hertz and 5% of the crack reference, and its Hertz error falls from its
+// coarsest to its finest level (direct nodal on Hertz: reported only); in full
+// mode, as results/README.md says, smoothed nodal integration beats tet4's
+// finest on Hertz and EFG's finest beats every FEM point on the crack.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -190,24 +192,33 @@ void pareto_study(const StudyOptions& options) {
   // 4. The claims.
   for (const Point& p : points)
     check_claim(p.ok(), p.problem + " " + p.method + " at " + std::to_string(p.resolution) + " ran");
-  for (const std::string problem : {"hertz", "crack"}) {
+  std::map<std::string, std::map<std::string, std::vector<const Point*>>> series;  // problem, method: coarsest first
+  for (const Point& p : points) series[p.problem][p.method].push_back(&p);
+  for (const auto& [problem, methods] : series) {
     const double bound = problem == "hertz" ? 6.0 : 5.0;
-    std::map<std::string, std::vector<const Point*>> by_method;  // in the order run: coarsest first
-    for (const Point& p : points)
-      if (p.problem == problem) by_method[p.method].push_back(&p);
-    for (const auto& [method, series] : by_method) {
-      const double best = (*std::min_element(series.begin(), series.end(), [](const Point* a, const Point* b) {
-                            return a->error_percent < b->error_percent;
-                          }))->error_percent;
-      check_claim(best < bound, problem + ": " + method + "'s most accurate point is within " +
-                                    std::to_string(bound) + " % (it is " + std::to_string(best) + " %)");
+    for (const auto& [method, levels] : methods) {
       // The paper's direct nodal gradients break down on the graded lattice at
-      // a/4 (results/README.md, Hertz): reported, not claimed to converge.
-      if (problem == "hertz" && series.size() > 1 && method != "nodal")
-        check_claim(series.back()->error_percent < series.front()->error_percent,
+      // a/4 (results/README.md, Hertz): reported, not claimed.
+      if (problem == "hertz" && method == "nodal") continue;
+      const double finest = levels.back()->error_percent;
+      check_claim(finest < bound, problem + ": " + method + " at its finest level is within " +
+                                      std::to_string(bound) + " % (it is " + std::to_string(finest) + " %)");
+      if (problem == "hertz" && levels.size() > 1)
+        check_claim(finest < levels.front()->error_percent,
                     "hertz: " + method + "'s error falls from its coarsest to its finest level");
     }
   }
+  if (quick) return;
+  // What results/README.md says of the fronts in words.
+  const double smoothed = series["hertz"]["nodal_smoothed"].back()->error_percent;
+  const double tet4 = series["hertz"]["fem_tet4"].back()->error_percent;
+  check_claim(smoothed < tet4, "hertz: smoothed nodal integration at a/4 is more accurate than tet4 at its finest (" +
+                                   std::to_string(smoothed) + " against " + std::to_string(tet4) + " %)");
+  const double efg = series["crack"]["efg"].back()->error_percent;
+  for (const char* fem : {"fem_tri3", "fem_tri6"})
+    for (const Point* p : series["crack"][fem])
+      check_claim(efg < p->error_percent, std::string("crack: efg at its finest spacing is more accurate than ") + fem +
+                                              " at " + std::to_string(p->resolution) + " m");
 }
 
 }  // namespace kerf

@@ -28,12 +28,16 @@
 //    against the work of the load.
 // 5. Locking. The cantilever under an end load, nu = 0.3 and 0.49, static:
 //    tip deflection against fem tet10 at half the size.
-// Claims: the estimate is safe (stable at f = 1) for every method; stabilised
-// nodal integration has no spurious zero-energy mode and its undamped
-// energy stays within 1% (without stabilisation it has some); the
-// multiplicative rule conditions the zigzag's enriched nodes worse than the
-// grid, shortens the critical step and, growing, gains energy where the grid
-// creates none; tet4 loses more of its deflection at nu = 0.49 than tet10.
+// Claims (each what results/README.md says in words; every planned run but
+// the bisection's probes must finish): the estimate is safe (stable at f = 1)
+// and tight (unstable within the bisection's resolution) for every method, and
+// the FEM element bound lies below it; no method's undamped energy drifts
+// beyond 1e-4 of its strain energy; the stabilised methods have no spurious
+// zero-energy mode and nodal integration without stabilisation has some; the
+// multiplicative rule conditions the zigzag's enriched nodes 100 times worse
+// than the grid, shortens the critical step and, growing, gains energy where
+// every other rule creates none; tet4 keeps less than 80% of its deflection at
+// nu = 0.49 and every other method more than 95%.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -194,208 +198,263 @@ std::string zigzag_scene(const std::string& rule, bool growing, double dt, int s
   return s.str();
 }
 
-}  // namespace
+/// What the five experiments share: the study's runner and tables, the
+/// estimates part 1 finds (part 2 runs at 0.9 of them), and the claims, checked
+/// after the results are written so that a failed claim still leaves them.
+struct Experiments {
+  bool quick;
+  StudyRunner& runner;
+  CsvTable& table;
+  std::map<std::string, double> estimate;  // s, per explicit method
+  std::vector<std::pair<bool, std::string>> claims;
 
-void stability_study(const StudyOptions& options) {
-  const bool quick = options.quick;
-  const std::vector<Variant>& methods = all_methods();
-  const int bisections = quick ? 3 : 7;
-  const int probe_steps = quick ? 600 : 2000;   // steps of each stability probe
-  const int drift_steps = quick ? 1000 : 20000;  // steps of the long undamped run
-  const std::vector<std::string> rules =
-      quick ? std::vector<std::string>{"grid", "multiplicative"}
-            : std::vector<std::string>{"grid", "grid-interpolated", "multiplicative", "visibility", "diffraction"};
-  const int explicit_methods =
-      static_cast<int>(std::count_if(methods.begin(), methods.end(), [](const Variant& m) { return m.explicit_steps; }));
-  const int planned = explicit_methods * (bisections + 4) + 2 * static_cast<int>(rules.size()) +
-                      2 * static_cast<int>(methods.size() + 1);
-  StudyRunner runner("stability", options, planned);
-  Json result = {{"study", "stability"}, {"quick", quick}};
-  CsvTable table(runner.out_dir() + "/stability.csv", {"part", "case", "quantity", "value", "unit"});
-  auto number = [&](const std::string& part, const std::string& item, const std::string& quantity, double value,
-                    const std::string& unit) {
+  void number(const std::string& part, const std::string& item, const std::string& quantity, double value,
+              const std::string& unit) {
     table.row({part, item, quantity, std::isfinite(value) ? Json(value) : Json(), unit});
-  };
+  }
+  void claim(bool holds, const std::string& what) { claims.emplace_back(holds, what); }
+  /// A planned run that must finish (bisection probes may diverge by design).
+  bool ran(const Json& summary, const std::string& label) {
+    const bool ok = summary.value("status", "") == "ok";
+    claim(ok, label + " ran (" + summary.value("error", std::string("ok")) + ")");
+    return ok;
+  }
+};
 
-  // 1. The critical step: the run's estimate, then bisection on dt / estimate.
+int bisections(bool quick) { return quick ? 3 : 7; }
+
+/// 1. The critical step: the run's estimate, then bisection on dt / estimate.
+Json critical_step(Experiments& x) {
+  const int probe_steps = x.quick ? 600 : 2000;  // steps of each stability probe
   Json critical = Json::object();
-  std::map<std::string, double> estimate;
-  for (const Variant& m : methods) {
+  for (const Variant& m : all_methods()) {
     if (!m.explicit_steps) continue;
     auto probe = [&](const std::string& label, double dt, int steps) {
-      return runner.run(label, cantilever(m, "linear", 0.3, spacing, gravity, explicit_solve(dt, steps), energy_probe));
+      return x.runner.run(label, cantilever(m, "linear", 0.3, spacing, gravity, explicit_solve(dt, steps), energy_probe));
     };
     const Json first = probe("critical_" + m.label + "_estimate", 1e-7, 1);
-    estimate[m.label] = solver_counter(first, "critical_dt_s");
+    x.ran(first, "critical_" + m.label + "_estimate");
+    const double estimate = x.estimate[m.label] = solver_counter(first, "critical_dt_s");
     const double element_bound = solver_counter(first, "critical_dt_element_bound_s");
     auto stable = [&](double f) {
       std::ostringstream label;
       label << "critical_" << m.label << "_f" << f;
-      const Json s = probe(label.str(), f * estimate[m.label], probe_steps);
-      return bounded(s, energy_history(runner.out_dir() + "/runs/" + label.str()));
+      const Json s = probe(label.str(), f * estimate, probe_steps);
+      return bounded(s, energy_history(x.runner.out_dir() + "/runs/" + label.str()));
     };
     const bool at_estimate = stable(1.0);
     double lo = at_estimate ? 1.0 : 0.5, hi = at_estimate ? 2.0 : 1.0;
     // A limit outside [0.5, 2] leaves the far end unknown (null in the results).
     if (at_estimate && stable(hi)) lo = hi, hi = NAN;
     if (!at_estimate && !stable(lo)) hi = lo, lo = NAN;
-    for (int k = 0; k < bisections && std::isfinite(lo) && std::isfinite(hi); ++k) {
+    for (int k = 0; k < bisections(x.quick) && std::isfinite(lo) && std::isfinite(hi); ++k) {
       const double mid = 0.5 * (lo + hi);
       (stable(mid) ? lo : hi) = mid;
     }
-    critical[m.label] = {{"estimate_s", estimate[m.label]},
+    critical[m.label] = {{"estimate_s", estimate},
                          {"element_bound_s", std::isfinite(element_bound) ? Json(element_bound) : Json()},
                          {"stable_at_estimate", at_estimate},
                          {"largest_stable_factor", std::isfinite(lo) ? Json(lo) : Json()},
                          {"first_unstable_factor", std::isfinite(hi) ? Json(hi) : Json()}};
-    number("critical_step", m.label, "estimate", estimate[m.label], "s");
-    number("critical_step", m.label, "element_bound", element_bound, "s");
-    number("critical_step", m.label, "largest_stable_over_estimate", lo, "1");
-    number("critical_step", m.label, "first_unstable_over_estimate", hi, "1");
-    runner.say(m.label + ": estimate " + std::to_string(estimate[m.label]) + " s, stable up to " +
-               std::to_string(lo) + " x, unstable at " + std::to_string(hi) + " x");
+    x.number("critical_step", m.label, "estimate", estimate, "s");
+    x.number("critical_step", m.label, "element_bound", element_bound, "s");
+    x.number("critical_step", m.label, "largest_stable_over_estimate", lo, "1");
+    x.number("critical_step", m.label, "first_unstable_over_estimate", hi, "1");
+    x.runner.say(m.label + ": estimate " + std::to_string(estimate) + " s, stable up to " + std::to_string(lo) +
+                 " x, unstable at " + std::to_string(hi) + " x");
+    // Safe, and as tight as the bisection can tell (results/README.md: within 0.8%).
+    const double resolution = std::ldexp(1.0, -bisections(x.quick));
+    x.claim(at_estimate, m.label + " runs stably at its own critical-step estimate");
+    x.claim(hi <= 1.0 + resolution * (1.0 + 1e-12),
+            m.label + " is unstable within " + std::to_string(resolution) + " of its estimate (first unstable at " +
+                std::to_string(hi) + " x)");
+    if (std::isfinite(element_bound))
+      x.claim(element_bound < estimate, m.label + "'s element bound is below the Lanczos estimate");
   }
-  result["critical_step"] = critical;
+  return critical;
+}
 
-  // 2. Long undamped runs at 0.9 of the estimate, corotational.
+/// 2. Long undamped runs at 0.9 of the estimate, corotational.
+Json energy_drift(Experiments& x) {
+  const int steps = x.quick ? 1000 : 20000;
   Json drift = Json::object();
-  for (const Variant& m : methods) {
+  for (const Variant& m : all_methods()) {
     if (!m.explicit_steps) continue;
     const std::string label = "drift_" + m.label;
-    const double dt = 0.9 * estimate[m.label];
-    const Json s = runner.run(label, cantilever(m, "corotational", 0.3, spacing, gravity,
-                                                explicit_solve(dt, drift_steps), energy_probe));
-    const EnergyHistory e = energy_history(runner.out_dir() + "/runs/" + label);
-    const double relative = e.max_strain > 0.0 ? e.max_imbalance / e.max_strain : NAN;
-    drift[m.label] = {{"status", s.value("status", "error")}, {"dt_s", dt}, {"steps", drift_steps},
-                      {"duration_s", dt * drift_steps}, {"max_energy_error_over_max_strain", e.finite ? Json(relative) : Json()},
+    const double dt = 0.9 * x.estimate[m.label];
+    const Json s =
+        x.runner.run(label, cantilever(m, "corotational", 0.3, spacing, gravity, explicit_solve(dt, steps), energy_probe));
+    const bool ok = x.ran(s, label);
+    const EnergyHistory e = energy_history(x.runner.out_dir() + "/runs/" + label);
+    const double relative = ok && e.finite && e.max_strain > 0.0 ? e.max_imbalance / e.max_strain : NAN;
+    drift[m.label] = {{"status", s.value("status", "error")}, {"dt_s", dt}, {"steps", steps},
+                      {"duration_s", dt * steps}, {"max_energy_error_over_max_strain", std::isfinite(relative) ? Json(relative) : Json()},
                       {"max_mechanical_over_max_work", e.max_work > 0 ? Json(e.max_mechanical / e.max_work) : Json()}};
-    number("energy_drift", m.label, "max_energy_error_over_max_strain", e.finite ? relative : NAN, "1");
-    runner.say(m.label + ": undamped energy error " + std::to_string(100 * relative) + " % of the strain energy over " +
-               std::to_string(drift_steps) + " steps");
+    x.number("energy_drift", m.label, "max_energy_error_over_max_strain", relative, "1");
+    x.runner.say(m.label + ": undamped energy error " + std::to_string(100 * relative) + " % of the strain energy over " +
+                 std::to_string(steps) + " steps");
+    // results/README.md: no drift (2e-6 to 6e-6 measured over 20 000 steps).
+    x.claim(relative < 1e-4, m.label + " keeps the undamped energy within 1e-4 of the strain energy (it is " +
+                                 std::to_string(relative) + ")");
   }
-  result["energy_drift"] = drift;
+  return drift;
+}
 
-  // 3. Near-zero-energy modes of a free block, against tet4's softest deformation mode.
+/// 3. Near-zero-energy modes of a free block, against tet4's softest deformation mode.
+Json zero_energy_modes(Experiments& x) {
   Json modes = Json::object();
   double softest_physical = NAN;  // tet4's 7th eigenvalue (1/s^2)
-  for (const Variant& m : methods) {
+  for (const Variant& m : all_methods()) {
     if (m.element == "tet10") continue;
     std::ostringstream yaml;
     yaml << "name: modes\n"
          << "domain: {box: {min: [0, 0, 0], max: [0.02, 0.01, 0.01]}}\n"
          << "material: {model: linear, young: " << young << ", poisson: 0.3, density: " << density << "}\n"
          << discretization(m, spacing) << "solve: {analysis: static}\n";
-    const Eigen::VectorXd omega2 = free_spectrum(yaml.str(), runner.out_dir() + "/scenes/modes_" + m.label + ".yaml");
+    const Eigen::VectorXd omega2 = free_spectrum(yaml.str(), x.runner.out_dir() + "/scenes/modes_" + m.label + ".yaml");
     if (m.label == "fem_tet4") softest_physical = omega2[6];
     int spurious = 0;
     for (Index i = 6; i < omega2.size(); ++i) spurious += omega2[i] < 0.1 * softest_physical;
     modes[m.label] = {{"spurious_soft_modes", spurious}, {"lowest_deformation_omega2", omega2[6]},
                       {"largest_omega2", omega2[omega2.size() - 1]}};
-    number("zero_energy_modes", m.label, "modes_below_a_tenth_of_tet4_softest", spurious, "1");
-    number("zero_energy_modes", m.label, "lowest_deformation_omega2", omega2[6], "1/s^2");
-    runner.say(m.label + ": " + std::to_string(spurious) + " modes below a tenth of tet4's softest (omega^2 " +
-               std::to_string(softest_physical) + " 1/s^2); its softest " + std::to_string(omega2[6]));
+    x.number("zero_energy_modes", m.label, "modes_below_a_tenth_of_tet4_softest", spurious, "1");
+    x.number("zero_energy_modes", m.label, "lowest_deformation_omega2", omega2[6], "1/s^2");
+    x.runner.say(m.label + ": " + std::to_string(spurious) + " modes below a tenth of tet4's softest (omega^2 " +
+                 std::to_string(softest_physical) + " 1/s^2); its softest " + std::to_string(omega2[6]));
+    if (m.stabilized)
+      x.claim(spurious == 0, m.label + " has no spurious near-zero-energy mode (it has " + std::to_string(spurious) + ")");
+    else
+      x.claim(spurious > 0, m.label + " shows spurious near-zero-energy modes without its stabilisation");
   }
-  result["zero_energy_modes"] = modes;
+  return modes;
+}
 
-  // 4. The 200-piece zigzag: whole cut at once, then growing.
+/// 4. The 200-piece zigzag: whole cut at once, then growing.
+Json zigzag_cut(Experiments& x, const std::vector<std::string>& rules) {
   Json zigzag = Json::object();
   const double growing_dt = 5e-6;
   for (const std::string& rule : rules) {
-    const Json whole = runner.run("zigzag_whole_" + rule, zigzag_scene(rule, false, 1e-7, 1));
+    const Json whole = x.runner.run("zigzag_whole_" + rule, zigzag_scene(rule, false, 1e-7, 1));
+    x.ran(whole, "zigzag_whole_" + rule);
     const std::string label = "zigzag_growing_" + rule;
-    const Json growing = runner.run(label, zigzag_scene(rule, true, growing_dt, 2000));
-    const EnergyHistory e = energy_history(runner.out_dir() + "/runs/" + label);
+    const Json growing = x.runner.run(label, zigzag_scene(rule, true, growing_dt, 2000));
+    const bool ok = x.ran(growing, label);
+    const EnergyHistory e = energy_history(x.runner.out_dir() + "/runs/" + label);
+    const bool gain_known = ok && e.finite && e.max_work > 0;
     Json z = {{"critical_dt_s", solver_counter(whole, "critical_dt_s")},
               {"condition_median", solver_counter(whole, "mls_condition_median")},
               {"condition_near_cut_max", solver_counter(whole, "mls_condition_near_cut_max")},
               {"condition_near_tip_max", solver_counter(whole, "mls_condition_near_tip_max")},
               {"growing_status", growing.value("status", "error")},
               {"growing_dt_s", growing_dt},
-              {"growing_mechanical_over_work", e.finite && e.max_work > 0 ? Json(e.max_mechanical / e.max_work) : Json()},
+              {"growing_mechanical_over_work", gain_known ? Json(e.max_mechanical / e.max_work) : Json()},
               {"cut_update_ms_median", growing.contains("timing") ? growing["timing"]["cut_update_ms"]["median"] : Json()}};
     for (const auto& [key, value] : z.items())
-      if (value.is_number()) number("zigzag", rule, key, value.get<double>(), "");
+      if (value.is_number()) x.number("zigzag", rule, key, value.get<double>(), "");
     zigzag[rule] = z;
-    runner.say(rule + ": near-cut condition " + z["condition_near_cut_max"].dump() + ", critical dt " +
-               z["critical_dt_s"].dump() + " s, growing run K+U over work " + z["growing_mechanical_over_work"].dump());
+    x.runner.say(rule + ": near-cut condition " + z["condition_near_cut_max"].dump() + ", critical dt " +
+                 z["critical_dt_s"].dump() + " s, growing run K+U over work " + z["growing_mechanical_over_work"].dump());
+    if (rule != "multiplicative")
+      x.claim(gain_known && e.max_mechanical <= e.max_work,
+              "the growing zigzag cut with " + rule + " creates no energy (kinetic + strain <= work of the load; it is " +
+                  z["growing_mechanical_over_work"].dump() + ")");
   }
-  result["zigzag"] = zigzag;
+  auto figure = [&](const std::string& rule, const char* key) {
+    return zigzag[rule][key].is_number() ? zigzag[rule][key].get<double>() : NAN;
+  };
+  x.claim(figure("multiplicative", "condition_near_cut_max") > 100.0 * figure("grid", "condition_near_cut_max"),
+          "the multiplicative rule conditions the zigzag's enriched nodes 100 times worse than the grid");
+  x.claim(figure("multiplicative", "critical_dt_s") < figure("grid", "critical_dt_s"),
+          "the multiplicative rule shortens the critical step of the zigzag-cut plate");
+  x.claim(figure("multiplicative", "growing_mechanical_over_work") > 1.0,
+          "the growing zigzag cut gains energy with the multiplicative rule (kinetic + strain over work " +
+              zigzag["multiplicative"]["growing_mechanical_over_work"].dump() + ")");
+  return zigzag;
+}
 
-  // 5. Locking: tip deflection under an end load against tet10 at half the size.
-  Json locking = Json::object();
+/// 5. Locking: tip deflection under an end load against tet10 at half the size.
+Json locking(Experiments& x) {
+  Json out = Json::object();
   const std::string end_load = "  - {select: {plane: {axis: x, at: 0.05}}, traction: [0, 0, -10]}\n";
   const std::string tip = "    - {name: tip, point: [0.05, 0.005, 0.005], field: displacement}\n";
   const Variant reference{"fem_tet10_fine", "fem", "tet10"};
-  for (double poisson : {0.3, 0.49}) {
-    const std::string nu = poisson == 0.3 ? "0.3" : "0.49";
+  for (const char* nu : {"0.3", "0.49"}) {
     auto deflection = [&](const Variant& m, double h) {
-      const Json s = runner.run("locking_" + m.label + "_nu" + nu,
-                                cantilever(m, "linear", poisson, h, end_load, "solve: {analysis: static}\n", tip));
-      return s.value("status", "") == "ok" ? -s["probes"]["tip"]["displacement"][2].get<double>() : NAN;
+      const std::string label = "locking_" + m.label + "_nu" + nu;
+      const Json s = x.runner.run(label, cantilever(m, "linear", std::stod(nu), h, end_load,
+                                                    "solve: {analysis: static}\n", tip));
+      return x.ran(s, label) ? -s["probes"]["tip"]["displacement"][2].get<double>() : NAN;
     };
-    const double exact = deflection(reference, quick ? spacing : spacing / 2);
-    locking["reference_deflection_m_nu" + nu] = exact;
-    for (const Variant& m : methods) {
+    const double exact = deflection(reference, x.quick ? spacing : spacing / 2);
+    out["reference_deflection_m_nu" + std::string(nu)] = exact;
+    for (const Variant& m : all_methods()) {
       const double ratio = deflection(m, spacing) / exact;
-      locking[m.label]["deflection_over_reference_nu" + nu] = std::isfinite(ratio) ? Json(ratio) : Json();
-      number("locking", m.label, "deflection_over_reference_nu" + nu, ratio, "1");
+      out[m.label]["deflection_over_reference_nu" + std::string(nu)] = std::isfinite(ratio) ? Json(ratio) : Json();
+      x.number("locking", m.label, "deflection_over_reference_nu" + std::string(nu), ratio, "1");
     }
   }
-  result["locking"] = locking;
+  // results/README.md: tet4 loses 38% of its deflection; tet10 and the meshless methods 1-3%.
+  for (const Variant& m : all_methods()) {
+    const Json &stiff = out[m.label]["deflection_over_reference_nu0.49"], &soft = out[m.label]["deflection_over_reference_nu0.3"];
+    const double kept = stiff.is_number() && soft.is_number() ? stiff.get<double>() / soft.get<double>() : NAN;
+    if (m.label == "fem_tet4")
+      x.claim(kept < 0.8, "tet4 locks: it keeps less than 80% of its deflection at nu = 0.49 (it keeps " +
+                              std::to_string(kept) + ")");
+    else
+      x.claim(kept > 0.95, m.label + " does not lock: it keeps more than 95% of its deflection at nu = 0.49 (it keeps " +
+                               std::to_string(kept) + ")");
+  }
+  return out;
+}
 
-  // The headline and the claims.
-  auto factor = [&](const std::string& m) { return critical[m]["largest_stable_factor"]; };
-  auto ratio = [&](const std::string& m, const std::string& nu) {
-    return locking[m]["deflection_over_reference_nu" + nu].is_number()
-               ? locking[m]["deflection_over_reference_nu" + nu].get<double>()
-               : NAN;
-  };
-  Json headline = Json::array();
-  for (const Variant& m : methods)
-    if (m.explicit_steps && factor(m.label).is_number())
-      headline.push_back({{"what", m.label + " largest stable dt over the Lanczos estimate"},
-                          {"value", factor(m.label)}, {"unit", "x"}});
-  headline.push_back({{"what", "nodal (stabilised) undamped energy error over max strain energy"},
-                      {"value", drift["nodal"]["max_energy_error_over_max_strain"]}, {"unit", "1"}});
-  headline.push_back({{"what", "nodal without stabilisation: spurious near-zero-energy modes (2 x 1 x 1 cm block)"},
-                      {"value", modes["nodal_unstabilized"]["spurious_soft_modes"]}, {"unit", ""}});
-  headline.push_back({{"what", "zigzag 200 pieces, enriched-node condition number, grid"},
-                      {"value", zigzag["grid"]["condition_near_cut_max"]}, {"unit", ""}});
-  headline.push_back({{"what", "zigzag 200 pieces, enriched-node condition number, multiplicative"},
-                      {"value", zigzag["multiplicative"]["condition_near_cut_max"]}, {"unit", ""}});
-  headline.push_back({{"what", "tet4 tip deflection over reference at nu = 0.49"}, {"value", ratio("fem_tet4", "0.49")},
-                      {"unit", "1"}});
-  headline.push_back({{"what", "tet10 tip deflection over reference at nu = 0.49"},
-                      {"value", ratio("fem_tet10", "0.49")}, {"unit", "1"}});
-  result["headline"] = headline;
+Json headline(const Json& result) {
+  const Json &critical = result["critical_step"], &locking = result["locking"], &zigzag = result["zigzag"];
+  Json out = Json::array();
+  for (const auto& [label, c] : critical.items())
+    if (c["largest_stable_factor"].is_number())
+      out.push_back({{"what", label + " largest stable dt over the Lanczos estimate"},
+                     {"value", c["largest_stable_factor"]}, {"unit", "x"}});
+  out.push_back({{"what", "nodal (stabilised) undamped energy error over max strain energy"},
+                 {"value", result["energy_drift"]["nodal"]["max_energy_error_over_max_strain"]}, {"unit", "1"}});
+  out.push_back({{"what", "nodal without stabilisation: spurious near-zero-energy modes (2 x 1 x 1 cm block)"},
+                 {"value", result["zero_energy_modes"]["nodal_unstabilized"]["spurious_soft_modes"]}, {"unit", ""}});
+  out.push_back({{"what", "zigzag 200 pieces, enriched-node condition number, grid"},
+                 {"value", zigzag["grid"]["condition_near_cut_max"]}, {"unit", ""}});
+  out.push_back({{"what", "zigzag 200 pieces, enriched-node condition number, multiplicative"},
+                 {"value", zigzag["multiplicative"]["condition_near_cut_max"]}, {"unit", ""}});
+  for (const char* element : {"tet4", "tet10"})
+    out.push_back({{"what", std::string(element) + " tip deflection over reference at nu = 0.49"},
+                   {"value", locking[std::string("fem_") + element]["deflection_over_reference_nu0.49"]}, {"unit", "1"}});
+  return out;
+}
+
+}  // namespace
+
+void stability_study(const StudyOptions& options) {
+  const bool quick = options.quick;
+  const std::vector<std::string> rules =
+      quick ? std::vector<std::string>{"grid", "multiplicative"}
+            : std::vector<std::string>{"grid", "grid-interpolated", "multiplicative", "visibility", "diffraction"};
+  const int methods = static_cast<int>(all_methods().size());
+  const int explicit_methods = static_cast<int>(
+      std::count_if(all_methods().begin(), all_methods().end(), [](const Variant& m) { return m.explicit_steps; }));
+  const int planned =
+      explicit_methods * (bisections(quick) + 4) + 2 * static_cast<int>(rules.size()) + 2 * (methods + 1);
+  StudyRunner runner("stability", options, planned);
+  CsvTable table(runner.out_dir() + "/stability.csv", {"part", "case", "quantity", "value", "unit"});
+  Experiments x{quick, runner, table, {}, {}};
+
+  Json result = {{"study", "stability"}, {"quick", quick}};
+  result["critical_step"] = critical_step(x);
+  result["energy_drift"] = energy_drift(x);
+  result["zero_energy_modes"] = zero_energy_modes(x);
+  result["zigzag"] = zigzag_cut(x, rules);
+  result["locking"] = locking(x);
+  result["headline"] = headline(result);
   result["plots"] = {"stability.png"};
   write_json(runner.out_dir() + "/stability.json", result);
   plot("stability", runner.out_dir());
-
-  for (const Variant& m : methods)
-    if (m.explicit_steps) check_claim(critical[m.label]["stable_at_estimate"].get<bool>(),
-                m.label + " runs stably at its own critical-step estimate");
-  check_claim(modes["nodal"]["spurious_soft_modes"] == 0 && modes["nodal_unstabilized"]["spurious_soft_modes"] > 0,
-              "stabilisation removes nodal integration's spurious near-zero-energy modes (without it: " +
-                  modes["nodal_unstabilized"]["spurious_soft_modes"].dump() + ")");
-  const Json& nodal_drift = drift["nodal"]["max_energy_error_over_max_strain"];
-  check_claim(nodal_drift.is_number() && nodal_drift.get<double>() < 0.01,
-              "stabilised nodal integration keeps the undamped energy within 1% (it is " + nodal_drift.dump() + ")");
-  const Json &grid = zigzag["grid"], &multiplicative = zigzag["multiplicative"];
-  check_claim(multiplicative["condition_near_cut_max"].get<double>() > 100.0 * grid["condition_near_cut_max"].get<double>(),
-              "the multiplicative rule conditions the zigzag's enriched nodes 100 times worse than the grid");
-  check_claim(multiplicative["critical_dt_s"].get<double>() < grid["critical_dt_s"].get<double>(),
-              "the multiplicative rule shortens the critical step of the zigzag-cut plate");
-  const Json &grid_gain = grid["growing_mechanical_over_work"], &multiplicative_gain = multiplicative["growing_mechanical_over_work"];
-  check_claim(grid_gain.is_number() && grid_gain.get<double>() <= 1.0,
-              "the growing zigzag cut with the grid creates no energy (kinetic + strain <= work of the load; it is " +
-                  grid_gain.dump() + ")");
-  check_claim(!multiplicative_gain.is_number() || multiplicative_gain.get<double>() > grid_gain.get<double>(),
-              "the growing zigzag cut gains more energy with the multiplicative rule than with the grid");
-  check_claim(ratio("fem_tet4", "0.49") / ratio("fem_tet4", "0.3") < ratio("fem_tet10", "0.49") / ratio("fem_tet10", "0.3"),
-              "tet4 loses more of its deflection than tet10 from nu = 0.3 to 0.49 (locking)");
+  for (const auto& [holds, what] : x.claims) check_claim(holds, what);
 }
 
 }  // namespace kerf

@@ -3,12 +3,13 @@
 // same plate, by every meshless enrichment rule and both FEM baselines
 // (`fem: remesh`, `fem: remove`). References: FEM tri6 on a quarter model
 // (straight crack), and fine `fem: remesh` of the whole plate (both cracks).
-// The errors of every method are printed; the bounds asserted are the issue's
-// 3% where a method meets it, and where it does not, the level measured
-// (named so in the test) so that a regression still fails.
+// The errors of every method are printed, and every row is asserted: the
+// issue's 3% where a method meets it, elsewhere the level measured (in the
+// comment beside it) with a margin, so that a regression fails.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <map>
 
 #include "support/test_support.h"
 
@@ -101,6 +102,8 @@ TEST(CrackScenes, FemBaselinesOnTheStraightCrack) {
     error_at[i] = relative_error("straight fem remove tri6 " + size + " m (1.5 mm off)",
                                  opening(s, "upper_gap", "lower_gap"), gap_reference);
   }
+  EXPECT_LT(error_at[0], 0.13);   // 10.5% measured
+  EXPECT_LT(error_at[1], 0.055);  // 4.2% measured
   EXPECT_LT(error_at[1], 0.6 * error_at[0]) << "removal converges as the cells along the cut shrink";
 }
 
@@ -118,6 +121,15 @@ TEST(CrackScenes, SlabOpeningAgreesWithThePlaneStrainPlateWithin3Percent) {
   }
 }
 
+// Measured errors on the kinked crack at 1 mm: nodal grid 4.0%, interpolated
+// 4.1%, multiplicative 4.5%, visibility 7.8%, diffraction 6.7%; efg grid 2.0%,
+// interpolated 2.0%, multiplicative 1.9%, visibility 10.0%, diffraction 3.5%.
+const std::map<std::string, double> kinked_bound = {
+    {"nodal grid", 0.05},       {"nodal grid-interpolated", 0.05}, {"nodal multiplicative", 0.055},
+    {"nodal visibility", 0.09}, {"nodal diffraction", 0.08},       {"efg grid", 0.03},
+    {"efg grid-interpolated", 0.03}, {"efg multiplicative", 0.03}, {"efg visibility", 0.12},
+    {"efg diffraction", 0.045}};
+
 TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
   json fine = run_ok("scenes/crack_kinked_2d_fem.yaml", {}, "kinked_fem_fine");
   const Eigen::Vector2d reference = opening(fine), gap_reference = opening(fine, "upper_gap", "lower_gap");
@@ -131,12 +143,11 @@ TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
       EXPECT_GE(solver["mls_condition_max"].get<double>(), solver["mls_condition_near_cut_max"].get<double>());
       EXPECT_GE(solver["mls_condition_near_cut_max"].get<double>(), solver["mls_condition_near_tip_max"].get<double>());
       EXPECT_GT(solver["mls_condition_near_tip_max"].get<double>(), 1.0) << method << " " << rule;
-      if (rule.starts_with("grid")) {
-        // efg meets the 3%; nodal integration with the MLS gradient at
-        // the nodes does not (5-7% from 1 to 0.5 mm): the bound is what it
-        // measures. Smoothed gradients converge (the test below).
-        EXPECT_LT(error, method == "efg" ? 0.03 : 0.06) << method << " " << rule;
-      }
+      // efg meets the 3% with the grid and multiplicative rules;
+      // nodal integration with the MLS gradient at the nodes does not (4-8%);
+      // visibility and diffraction bend the opening (8-10%). Smoothed
+      // gradients converge (the test below).
+      EXPECT_LT(error, kinked_bound.at(method + " " + rule)) << method << " " << rule;
     }
   json remesh = run_ok("scenes/crack_kinked_2d.yaml",
                        {"discretization.method=fem", "discretization.fem.element=tri6", "discretization.fem.size=0.001"},
@@ -146,8 +157,9 @@ TEST(CrackScenes, KinkedCrackByEveryMethodAgainstFineRemesh) {
                         {"discretization.method=fem", "discretization.fem.element=tri6",
                          "discretization.fem.size=0.001", "cuts.0.fem=remove", kinked_gap_probes},
                         "kinked_fem_remove");
-  relative_error("kinked fem remove tri6 1 mm (1.5 mm off)", opening(removed, "upper_gap", "lower_gap"),
-                 gap_reference);
+  EXPECT_LT(relative_error("kinked fem remove tri6 1 mm (1.5 mm off)", opening(removed, "upper_gap", "lower_gap"),
+                           gap_reference),
+            0.13);  // 10.9% measured
 }
 
 // Nodal integration with the MLS gradient at the nodes (the paper's) does not
@@ -169,10 +181,9 @@ TEST(CrackScenes, SmoothedNodalIntegrationConvergesWithin3PercentOnBothCracks) {
     const double e_kinked =
         relative_error("kinked nodal " + gradient + " 0.5 mm",
                        opening(run_ok("scenes/crack_kinked_2d.yaml", overrides, "kinked_nodal_" + gradient)), kinked);
-    if (gradient == "smoothed") {
-      EXPECT_LT(e_straight, 0.03);
-      EXPECT_LT(e_kinked, 0.03);
-    }
+    // Direct: 5.7% straight, 6.1% kinked measured; smoothed: the 3%.
+    EXPECT_LT(e_straight, gradient == "smoothed" ? 0.03 : 0.07) << gradient;
+    EXPECT_LT(e_kinked, gradient == "smoothed" ? 0.03 : 0.075) << gradient;
   }
 }
 

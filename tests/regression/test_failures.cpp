@@ -91,7 +91,10 @@ solve: {analysis: dynamic, integrator: central-difference, dt: 0.0012, duration:
 output: {vtk: false, probes: [{name: energy, field: energy}]}
 )";
   const std::string dir = testing::output_directory("unstable_dt");
-  EXPECT_THROW(run_scene(testing::scene_from_text(beam, {"output.dir=" + dir}), {"", true}), Error);
+  testing::expect_mentions(
+      testing::error_message([&] { run_scene(testing::scene_from_text(beam, {"output.dir=" + dir}), {"", true}); }),
+      {"test.yaml", "solve.dt", "value 0.0012 s is above the critical time step", "expected dt <=",
+       "solve.allow_unstable_dt"});
   std::string message;
   try {
     run_scene(testing::scene_from_text(beam, {"output.dir=" + dir, "solve.allow_unstable_dt=true"}), {"", true});
@@ -142,9 +145,14 @@ output:
   std::printf("tip: cholmod with reuse %.9e (%s), petsc fresh %.9e\n", reused, reused_counters.dump().c_str(), fresh);
   EXPECT_GT(std::abs(reused), 0.01) << "the bar should swing by centimetres (large rotations)";
   EXPECT_NEAR(reused, fresh, 1e-7 * std::abs(fresh));
-  // The reuse path really ran: fewer factorizations than steps, some CG iterations.
-  EXPECT_LT(reused_counters["factorizations"].get<double>(), 30);
-  EXPECT_GT(reused_counters["pcg_iterations"].get<double>(), 0);
+  // The reuse path really ran: 105 linear solves (Newton iterations) on 8
+  // factorizations (measured), the rest by CG preconditioned with a stale factor.
+  const double factorizations = reused_counters["factorizations"].get<double>();
+  const double solves = reused_counters["newton_iterations"].get<double>();
+  EXPECT_GE(solves, 90);
+  EXPECT_LE(factorizations, 10);
+  EXPECT_LT(10 * factorizations, solves);
+  EXPECT_GT(reused_counters["pcg_iterations"].get<double>(), solves);
 }
 
 }  // namespace

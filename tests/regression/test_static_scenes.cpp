@@ -118,18 +118,22 @@ TEST(StaticScenes, LinearCholmodRunBuildsNoMassAndNoPetsc) {
   EXPECT_FALSE(has("vtk"));
 }
 
+// At a load a hundred times smaller (E = 100 MPa) every model is linear
+// elasticity: each within 1e-3 of beam theory's share the linear model gets
+// on this coarse tet10 mesh, itself within 3% of beam theory.
 TEST(StaticScenes, NonlinearMaterialsConvergeAndAgreeAtSmallLoads) {
-  double reference = 0.0;
-  for (const char* model : {"linear", "corotational", "stvk", "neohookean"}) {
+  const double beam = beam_tip_deflection(1e8, 0.3, 1000, 9.81, 0.1, 0.02, 0.02);
+  auto tip = [](const char* model) {
     json s = testing::run_scene_file("scenes/cantilever.yaml",
-                 {"material.model=" + std::string(model), "material.young=1e8", "discretization.fem.size=0.01",
-                  "output.vtk=false"},
-                 std::string("small_load_") + model);
-    ASSERT_EQ(s["status"], "ok") << model;
-    double w = s["probes"]["tip"]["displacement"][2].get<double>();
-    if (reference == 0.0) reference = w;
-    EXPECT_NEAR(w, reference, 1e-3 * std::abs(reference)) << model;
-  }
+                                     {"material.model=" + std::string(model), "material.young=1e8",
+                                      "discretization.fem.size=0.01", "output.vtk=false"},
+                                     std::string("small_load_") + model);
+    EXPECT_EQ(s["status"], "ok") << model;
+    return -s["probes"]["tip"]["displacement"][2].get<double>();
+  };
+  const double linear = tip("linear");
+  EXPECT_NEAR(linear, beam, 0.03 * beam);
+  for (const char* model : {"corotational", "stvk", "neohookean"}) EXPECT_NEAR(tip(model), linear, 1e-3 * linear) << model;
 }
 
 TEST(StaticScenes, PetscSolverAgreesWithCholmod) {

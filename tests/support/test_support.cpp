@@ -1,8 +1,11 @@
 #include "support/test_support.h"
 
+#include <gtest/gtest.h>
+
 #include <filesystem>
 
 #include "app/run_scene.h"
+#include "core/check.h"
 #include "geometry/box_mesher.h"
 #include "problem/scene_reader.h"
 
@@ -36,6 +39,21 @@ SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u) {
 }
 
 std::string source_path(const std::string& relative) { return std::string(KERF_SOURCE_DIR) + "/" + relative; }
+
+std::string error_message(const std::function<void()>& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "expected a kerf::Error, none was thrown";
+  return "";
+}
+
+void expect_mentions(const std::string& message, std::initializer_list<std::string> parts) {
+  for (const std::string& part : parts)
+    EXPECT_NE(message.find(part), std::string::npos) << "'" << part << "' is not in the message: " << message;
+}
 
 nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector<std::string> overrides,
                                       const std::string& test_name) {

@@ -1,5 +1,7 @@
 #pragma once
 // Helpers shared by the tests: scenes from text, small meshes, full stiffness matrices.
+#include <functional>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,12 @@ Mesh unit_box_mesh(int dimension, int order, double size);
 SparseMatrix assemble_stiffness(const DiscreteBody& body, const Vector& u);
 
 std::string source_path(const std::string& relative);
+
+/// The message of the kerf::Error that `action` throws; fails the test (and
+/// returns "") when it throws none.
+std::string error_message(const std::function<void()>& action);
+/// Expects `message` to hold every one of `parts` (what the user must be told).
+void expect_mentions(const std::string& message, std::initializer_list<std::string> parts);
 
 /// Runs a scene file of the source tree quietly with `overrides`, output under
 /// the test's own directory; returns summary.json.

@@ -1,7 +1,8 @@
 // Contact with a rigid sphere (ContactBody): tangent by finite differences for
 // every method, the force on the sphere equal and opposite to the body's, the
 // linear part and its remainder adding up to the whole, the indentation
-// measured from the undeformed surface, and a sphere out of reach refused.
+// measured from the undeformed surface (beside an edge, by hand), and a sphere
+// out of reach or starting inside refused with a message that says so.
 #include <gtest/gtest.h>
 
 #include "core/check.h"
@@ -101,8 +102,11 @@ TEST_P(ContactTest, SphereAndBodyFeelOppositeForces) {
   EXPECT_LT((on_nodes + on_sphere).norm(), 1e-12 * on_sphere.norm());
   // The force the sphere exerts on the body is minus the contact part of the body's internal force.
   EXPECT_LT((reading.force + on_nodes).norm(), 1e-12 * on_nodes.norm());
-  // The sphere sank 0.2 mm below the top face it touched.
-  EXPECT_NEAR(reading.indentation, 2e-4, 1e-12);
+  // Moved out past the block's edge x = z = 1 cm, the sphere's centre at
+  // (12, 5, 14.5) mm is nearest that edge: by hand, R - |(2, 0, 4.5)| mm.
+  Vector beside = u;
+  beside.segment(dim * sphere, 3) = Vec3(0.007, 0.0, -0.0005);
+  EXPECT_NEAR(body->contact_reading(0, beside)->indentation, 0.005 - std::hypot(0.002, 0.0045), 1e-12);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, ContactTest, ::testing::Values("fem", "efg", "nodal"));
@@ -111,9 +115,11 @@ TEST(ContactReach, ASphereThatCannotReachTheBodyIsRefused) {
   Scene scene = indentation_scene("fem", "force: [0, 0, -0.01]");
   scene.contact[0].center.z() = 0.02;  // 5 mm above the top face
   RunReport report;
-  EXPECT_THROW(make_body(scene, report), Error);
+  testing::expect_mentions(testing::error_message([&] { make_body(scene, report); }),
+                           {"test.yaml:11:", "contact.0", "cannot reach the body's boundary", "radius 0.005 m"});
   scene.contact[0].center.z() = 0.014;  // 1 mm inside
-  EXPECT_THROW(make_body(scene, report), Error);
+  testing::expect_mentions(testing::error_message([&] { make_body(scene, report); }),
+                           {"test.yaml:11:", "contact.0", "the sphere starts 0.001", "inside the body"});
 }
 
 }  // namespace

@@ -209,7 +209,10 @@ boundary:
   - select: {plane: {axis: x, at: 0.0}}
     displacement: [0.1, null, null]
 )");
-  EXPECT_THROW(FemBody(s, testing::unit_box_mesh(3, 1, 0.5)), kerf::Error);
+  const std::string message = testing::error_message([&] { FemBody(s, testing::unit_box_mesh(3, 1, 0.5)); });
+  // Where (the second item's line), which component, both values, and the other item.
+  testing::expect_mentions(message, {"test.yaml:6:", "boundary.1", "component x", "prescribed 0.1 here and 0",
+                                     "test.yaml:4:", "expected one value"});
 }
 
 TEST(FemInterpolation, ReproducesNodalValuesOfALinearField) {
