@@ -95,7 +95,7 @@ struct MeshlessOptions {
   NodalGradient gradient = NodalGradient::direct;  // nodal: MLS gradient at the node, or SCNI
 };
 
-struct Discretization {
+struct DiscretizationOptions {
   Method method = Method::fem;
   FemOptions fem;
   std::vector<RefineRegion> refine;
@@ -168,7 +168,7 @@ struct Scene {
   std::optional<Box> box;
   std::string mesh_file;   // resolved path when domain.mesh is used
   Material material;
-  Discretization discretization;
+  DiscretizationOptions discretization;
   std::vector<BoundaryCondition> boundary;
   Vec3 gravity = Vec3::Zero();
   std::vector<ContactSphere> contact;

@@ -79,7 +79,7 @@ json scene_to_json(const Scene& s) {
                    {"poisson", m.poisson},
                    {"density", m.density},
                    {"damping", {{"mass", m.damping_mass}, {"stiffness", m.damping_stiffness}}}};
-  const Discretization& d = s.discretization;
+  const DiscretizationOptions& d = s.discretization;
   const MeshlessOptions& ml = d.meshless;
   json refine = json::array();
   for (const RefineRegion& r : d.refine) refine.push_back({{"box", box_json(r.box, dim)}, {"size", r.size}});

@@ -111,7 +111,7 @@ void read_material(const YamlField& f, Material& m) {
   }
 }
 
-void read_discretization(const YamlField& f, int dim, Discretization& d) {
+void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) {
   if (dim == 2) d.fem.element = ElementType::tri3;
   if (f.is_null()) return;
   f.allow_only({"method", "fem", "refine", "meshless"});

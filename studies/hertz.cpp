@@ -35,7 +35,7 @@ using namespace hertz;
 /// One method of the study and the finest spacings (a / n) it runs at.
 struct Method {
   std::string label;
-  Discretization discretization;
+  MethodChoice discretization;
   bool claimed;  // held to the bound (the paper's direct nodal gradients are reported only)
   std::vector<int> graded_full, graded_quick, uniform;
 };

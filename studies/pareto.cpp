@@ -77,7 +77,7 @@ void pareto_study(const StudyOptions& options) {
   // 1. What runs: Hertz at finest spacings a / n; the crack at node spacings or element sizes h.
   struct HertzMethod {
     std::string label;
-    hertz::Discretization discretization;
+    hertz::MethodChoice discretization;
     std::vector<int> levels;
   };
   const std::vector<HertzMethod> hertz_methods =

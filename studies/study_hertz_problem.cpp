@@ -12,7 +12,7 @@ double force() {
   return 4.0 / 3.0 * e_star * std::sqrt(sphere_radius) * std::pow(indentation(), 1.5);
 }
 
-std::string scene(const Discretization& d, double block, double coarse, const std::string& refine) {
+std::string scene(const MethodChoice& d, double block, double coarse, const std::string& refine) {
   std::ostringstream s;
   s.precision(12);
   s << "name: hertz\n"
@@ -39,7 +39,7 @@ std::string scene(const Discretization& d, double block, double coarse, const st
   return s.str();
 }
 
-std::string graded_scene(const Discretization& d, int n) {
+std::string graded_scene(const MethodChoice& d, int n) {
   const double h = contact_radius / n;
   std::ostringstream refine;
   refine.precision(12);

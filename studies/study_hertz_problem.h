@@ -20,18 +20,18 @@ double indentation();
 double force();
 
 /// A discretization of the block: method, FEM element, meshless gradient.
-struct Discretization {
+struct MethodChoice {
   std::string method, element = "tet4", gradient = "direct";
 };
 
 /// The scene: a quarter block of edge `block`, spacing `coarse` outside the
 /// refine boxes `refine` (YAML list items), the sphere touching the top face;
 /// probes `indent` (indentation) and `push` (contact force).
-std::string scene(const Discretization& d, double block, double coarse, const std::string& refine);
+std::string scene(const MethodChoice& d, double block, double coarse, const std::string& refine);
 
 /// The graded scene whose finest spacing is a / n: nested refine boxes at the
 /// contact, box k of edge finest_box 2^k and spacing h 2^k, so each coarser
 /// lattice falls on the finer one inside it, out to graded_block.
-std::string graded_scene(const Discretization& d, int n);
+std::string graded_scene(const MethodChoice& d, int n);
 
 }  // namespace kerf::hertz

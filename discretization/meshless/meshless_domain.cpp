@@ -49,7 +49,7 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
   const bool growing = std::any_of(cuts.begin(), cuts.end(), [](const CutSurface& c) { return c.appears.back() > 0.0; });
   if (!cuts.empty())
     enrichment_ =
-        std::make_unique<CutEnrichment>(scene.cuts, std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
+        std::make_unique<CutWeights>(scene.cuts, std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
   if (growing && background_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)
@@ -129,7 +129,7 @@ MomentConditioning MeshlessDomain::conditioning() const {
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   c.median = sorted[sorted.size() / 2];
   c.max = *std::max_element(k.begin(), k.end());
-  const CutEnrichment* cuts = enrichment();
+  const CutWeights* cuts = enrichment();
   if (!cuts) return c;
   // The ends of each cut as it stands: a polyline's two end vertices, a
   // strip's first and last edges (the blade's entry and its front).

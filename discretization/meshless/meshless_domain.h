@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "discretization/discrete_body.h"
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/cut_weights.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "discretization/meshless/smoothed_gradient.h"
@@ -54,7 +54,7 @@ class MeshlessDomain {
   const BoundaryFacets& facets() const { return facets_; }
 
   /// The cuts' weight enrichment of the nodes (null without a cut present).
-  const CutEnrichment* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
+  const CutWeights* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
   /// Brings the cuts to time t. Returns the nodes whose enriched weight
   /// changed (sorted; empty when no piece appeared) after recomputing the
   /// rows of at_nodes() they touch (`rows`, when given, receives those rows).
@@ -107,7 +107,7 @@ class MeshlessDomain {
   BoundaryFacets facets_;
   std::vector<char> background_on_boundary_;
   std::unique_ptr<PointIndex> index_;
-  std::unique_ptr<CutEnrichment> enrichment_;  // owns the scene's cuts (null without any)
+  std::unique_ptr<CutWeights> enrichment_;   // owns the scene's cuts (null without any)
   std::unique_ptr<PointIndex> load_points_;  // boundary-load quadrature points (growing cuts only)
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors

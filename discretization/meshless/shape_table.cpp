@@ -12,7 +12,7 @@ namespace {
 
 /// Fills row p of the table (values, gradients, condition, weight factors); false when singular.
 bool fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& point, Index p,
-              const WeightEnrichment* enrichment, PointShapes& scratch) {
+              const EnrichmentRule* enrichment, PointShapes& scratch) {
   const int dim = t.dimension;
   auto near = t.neighbours.of(p);
   const std::size_t s = t.neighbours.start[p];
@@ -31,7 +31,7 @@ bool fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& p
 /// Fills the rows `rows(i)`, i < count, in parallel; throws naming the first singular one.
 template <class Rows>
 void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points, Index count,
-               Rows rows, const WeightEnrichment* enrichment, const std::string& what, const std::string& context,
+               Rows rows, const EnrichmentRule* enrichment, const std::string& what, const std::string& context,
                const std::string& remedy) {
   Index failed = -1;
 #pragma omp parallel
@@ -64,7 +64,7 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 }
 
 bool PointShapes::evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
-                           const WeightEnrichment* enrichment) {
+                           const EnrichmentRule* enrichment) {
   x_.clear();
   w_.clear();
   weight_factor.assign(near.size(), 1.0);
@@ -89,7 +89,7 @@ bool PointShapes::evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& poi
 
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const WeightEnrichment* enrichment) {
+                       const EnrichmentRule* enrichment) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
@@ -104,7 +104,7 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
 }
 
 void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
-                        std::span<const Index> rows, const WeightEnrichment& enrichment, const std::string& what,
+                        std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
                         const std::string& context, const std::string& remedy) {
   if (table.weight_factor.empty()) table.weight_factor.assign(table.neighbours.index.size(), 1.0);
   fill_rows(table, nodes, basis, points, static_cast<Index>(rows.size()), [&](Index i) { return rows[i]; },

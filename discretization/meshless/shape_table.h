@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/enrichment_rule.h"
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
 #include "geometry/neighbor_search.h"
@@ -34,7 +34,7 @@ class PointShapes {
   /// into `shape`, their cut factors g_I into weight_factor; false when the
   /// moment matrix is singular.
   bool evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
-                const WeightEnrichment* enrichment);
+                const EnrichmentRule* enrichment);
   MlsShape shape;
   std::vector<double> weight_factor;
 
@@ -54,13 +54,13 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 /// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const WeightEnrichment* enrichment = nullptr);
+                       const EnrichmentRule* enrichment = nullptr);
 
 /// Recomputes rows `rows` of a table built by shape_table at `points` (the
 /// same points, same neighbour lists) with the cuts' current enrichment: the
 /// cut grew. Throws like shape_table.
 void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
-                        std::span<const Index> rows, const WeightEnrichment& enrichment, const std::string& what,
+                        std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
                         const std::string& context, const std::string& remedy);
 
 /// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.

@@ -90,7 +90,7 @@ void boundary_cells(const Mesh& mesh, Parts& cells) {
 }
 
 /// Does the segment a-b cross a piece of one of the cuts present?
-bool crosses_cuts(const CutEnrichment& cuts, const Vec3& a, const Vec3& b) {
+bool crosses_cuts(const CutWeights& cuts, const Vec3& a, const Vec3& b) {
   for (Index c = 0; c < cuts.cut_count(); ++c)
     if (segment_crosses_cut(cuts.surface(c), 0, cuts.pieces(c), a, b)) return true;
   return false;
@@ -100,7 +100,7 @@ bool crosses_cuts(const CutEnrichment& cuts, const Vec3& a, const Vec3& b) {
 /// With cuts, a part that a cut crosses is halved (segment, up to 40 times:
 /// the crossing is found to round-off) or quartered (triangle, when a cut
 /// crosses an edge; up to 5 times), so no sample straddles a jump.
-void sample_part(const CellPart& part, const CutEnrichment* cuts, int depth, std::vector<CellSample>& out) {
+void sample_part(const CellPart& part, const CutWeights* cuts, int depth, std::vector<CellSample>& out) {
   const auto& p = part.corner;
   if (part.corners == 2) {
     if (cuts && depth > 0 && crosses_cuts(*cuts, p[0], p[1])) {
@@ -259,7 +259,7 @@ SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const PointIndex& ind
   on_cuts_.assign(nodes.size(), {});
 }
 
-void SmoothedGradients::set_cuts(const CutEnrichment& cuts, const NodeSet& nodes) {
+void SmoothedGradients::set_cuts(const CutWeights& cuts, const NodeSet& nodes) {
   if (!locator_) locator_ = std::make_unique<CellLocator>(nodes.cells);
   CutPoints cut_points(nodes.cells, *locator_);
   const double spacing = *std::min_element(nodes.spacing.begin(), nodes.spacing.end());
@@ -307,7 +307,7 @@ std::vector<CellSample> SmoothedGradients::samples_of(Index node) const {
   return out;
 }
 
-void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
                                     const std::string& context, const std::string& remedy, Row& row) const {
   const int dim = nodes.dimension;
   if (row.sum.empty()) row.sum.assign(nodes.size(), Vec3::Zero()), row.seen.assign(nodes.size(), 0);
@@ -350,7 +350,7 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
 
 template <class Store>
 void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
-                                     const WeightEnrichment* enrichment, const std::string& context,
+                                     const EnrichmentRule* enrichment, const std::string& context,
                                      const std::string& remedy, Store store) const {
   const Index count = static_cast<Index>(rows.size());
   std::string failure;
@@ -373,7 +373,7 @@ void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet&
   if (!failure.empty()) throw Error(failure);
 }
 
-ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
                                     const std::string& context, const std::string& remedy) const {
   const int dim = nodes.dimension;
   const Index N = nodes.size();
@@ -414,7 +414,7 @@ ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis, const 
 }
 
 void SmoothedGradients::refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
-                                const WeightEnrichment& enrichment, const std::string& context,
+                                const EnrichmentRule& enrichment, const std::string& context,
                                 const std::string& remedy) const {
   const int dim = nodes.dimension;
   if (table.weight_factor.empty()) table.weight_factor.assign(table.neighbours.index.size(), 1.0);

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/cut_weights.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "geometry/neighbor_search.h"
@@ -55,16 +55,16 @@ class SmoothedGradients {
   /// both faces of each (in the cell holding each point, a hair off the
   /// face), and the boundaries of the cells a new piece crosses sampled
   /// again, split where the cut crosses them.
-  void set_cuts(const CutEnrichment& cuts, const NodeSet& nodes);
+  void set_cuts(const CutWeights& cuts, const NodeSet& nodes);
 
   /// Shape functions at the nodes with smoothed gradients: per node, the
   /// nodes whose support covers it or a sample of its cell; values and cut
   /// factors at the node itself. Throws like shape_table (`context`, `remedy`).
-  ShapeTable table(const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment, const std::string& context,
+  ShapeTable table(const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment, const std::string& context,
                    const std::string& remedy) const;
   /// Recomputes rows of a table made by table() (the cut grew).
   void refresh(ShapeTable& table, std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
-               const WeightEnrichment& enrichment, const std::string& context, const std::string& remedy) const;
+               const EnrichmentRule& enrichment, const std::string& context, const std::string& remedy) const;
 
   /// Samples of node I's cell (boundary, then cut faces).
   std::vector<CellSample> samples_of(Index node) const;
@@ -72,12 +72,11 @@ class SmoothedGradients {
  private:
   struct Row;
   /// Row I computed alone; throws (context, remedy) when a moment matrix is singular.
-  void compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const WeightEnrichment* enrichment,
+  void compute_row(Index I, const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
                    const std::string& context, const std::string& remedy, Row& row) const;
   template <class Store>
-  void compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis,
-                    const WeightEnrichment* enrichment, const std::string& context, const std::string& remedy,
-                    Store store) const;
+  void compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
+                    const std::string& context, const std::string& remedy, Store store) const;
 
   const PointIndex& index_;
   std::unique_ptr<CellLocator> locator_;  // over nodes.cells, built at the first cut

@@ -10,11 +10,11 @@
 #include <random>
 
 #include "discretization/enrichment/cut_phi.h"
-#include "discretization/enrichment/diffraction_enrichment.h"
-#include "discretization/enrichment/multiplicative_enrichment.h"
-#include "discretization/enrichment/grid_enrichment.h"
-#include "discretization/enrichment/single_piece_enrichment.h"
-#include "discretization/enrichment/visibility_enrichment.h"
+#include "discretization/enrichment/diffraction_rule.h"
+#include "discretization/enrichment/grid_rule.h"
+#include "discretization/enrichment/multiplicative_rule.h"
+#include "discretization/enrichment/single_piece_rule.h"
+#include "discretization/enrichment/visibility_rule.h"
 #include "discretization/meshless/mls_shape.h"
 
 namespace kerf {
@@ -34,14 +34,14 @@ CutSurface strip_3d() {
 }
 
 /// The grid rule for these nodes (exact lookup unless told).
-std::unique_ptr<GridEnrichment> grid_rule(const CutSurface& c, Index pieces, const std::vector<Vec3>& nodes,
-                                          const std::vector<double>& support,
-                                          GridLookup lookup = GridLookup::exact, double spacing = 0.01) {
+std::unique_ptr<GridRule> grid_rule(const CutSurface& c, Index pieces, const std::vector<Vec3>& nodes,
+                                    const std::vector<double>& support, GridLookup lookup = GridLookup::exact,
+                                    double spacing = 0.01) {
   const std::vector<char> flags = nodes_reached(c, pieces, nodes, support);
   std::vector<Index> reached;
   for (std::size_t I = 0; I < flags.size(); ++I)
     if (flags[I]) reached.push_back(static_cast<Index>(I));
-  return std::make_unique<GridEnrichment>(c, pieces, spacing, lookup, nodes, support, reached);
+  return std::make_unique<GridRule>(c, pieces, spacing, lookup, nodes, support, reached);
 }
 
 PhiValue whole_phi(const CutSurface& c, const Vec3& x) {
@@ -112,16 +112,16 @@ TEST(CutPhi, AnalyticGradientMatchesFiniteDifferencesAwayFromTheCut) {
 }
 
 /// The weight factors of every rule: g in [0, 1], its gradient by finite differences.
-TEST(WeightEnrichment, FactorsHaveTheGradientsOfTheirFiniteDifferences) {
+TEST(EnrichmentRule, FactorsHaveTheGradientsOfTheirFiniteDifferences) {
   const CutSurface c = kinked_2d();
   const std::vector<Vec3> nodes = {Vec3(-0.2, 0.2, 0), Vec3(0.3, -0.2, 0), Vec3(0.55, 0.3, 0), Vec3(0.0, -0.1, 0)};
   const std::vector<double> support(nodes.size(), 0.6);
   const Index n = c.piece_count();
-  std::vector<std::unique_ptr<WeightEnrichment>> rules;
+  std::vector<std::unique_ptr<EnrichmentRule>> rules;
   rules.push_back(grid_rule(c, n, nodes, support));
-  rules.push_back(std::make_unique<SinglePieceEnrichment>(c, n, nodes, support));
-  rules.push_back(std::make_unique<MultiplicativeEnrichment>(c, n, nodes, support));
-  rules.push_back(std::make_unique<DiffractionEnrichment>(c, n, nodes, support));
+  rules.push_back(std::make_unique<SinglePieceRule>(c, n, nodes, support));
+  rules.push_back(std::make_unique<MultiplicativeRule>(c, n, nodes, support));
+  rules.push_back(std::make_unique<DiffractionRule>(c, n, nodes, support));
   std::mt19937 random(7);
   std::uniform_real_distribution<double> u(-0.8, 0.8);
   const double h = 1e-6;
@@ -154,15 +154,15 @@ TEST(WeightEnrichment, FactorsHaveTheGradientsOfTheirFiniteDifferences) {
   for (std::size_t r = 0; r < rules.size(); ++r) EXPECT_GE(checked[r], 60) << "rule " << r;
 }
 
-TEST(WeightEnrichment, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
+TEST(EnrichmentRule, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
   const CutSurface c = straight_2d();
   const std::vector<Vec3> nodes = {Vec3(0.0, 0.05, 0), Vec3(0.45, 0.05, 0), Vec3(0.0, 2.0, 0)};
   const std::vector<double> support = {0.3, 0.3, 0.3};
   const auto grid_owner = grid_rule(c, 1, nodes, support);
-  const GridEnrichment& grid = *grid_owner;
-  VisibilityEnrichment visibility(c, 1, nodes, support);
+  const GridRule& grid = *grid_owner;
+  VisibilityRule visibility(c, 1, nodes, support);
   EXPECT_FALSE(grid.enriches(2));  // its support does not reach the cut
-  for (const WeightEnrichment* rule : std::initializer_list<const WeightEnrichment*>{&grid, &visibility}) {
+  for (const EnrichmentRule* rule : std::initializer_list<const EnrichmentRule*>{&grid, &visibility}) {
     EXPECT_EQ(rule->factor(0, Vec3(0.0, -0.05, 0)).value, 0.0);  // straight across the face
     EXPECT_EQ(rule->factor(0, Vec3(0.1, 0.1, 0)).value, 1.0);    // same side
   }
@@ -179,26 +179,27 @@ TEST(WeightEnrichment, AnEnrichedWeightVanishesAcrossTheFacesNotAroundTheTips) {
 // diffraction take it a hair above, so a node there sees one side only and
 // a point there is hidden from the nodes below (seeing both would glue the
 // faces together).
-TEST(WeightEnrichment, ANodeOnTheCutSeesItsPlusSideOnly) {
+TEST(EnrichmentRule, ANodeOnTheCutSeesItsPlusSideOnly) {
   const CutSurface c = straight_2d();  // normal +y
   const std::vector<Vec3> nodes = {Vec3(0.1, 0.0, 0)};
   const std::vector<double> support = {0.3};
   const auto grid = grid_rule(c, 1, nodes, support);
-  VisibilityEnrichment visibility(c, 1, nodes, support);
-  DiffractionEnrichment diffraction(c, 1, nodes, support);
-  for (const WeightEnrichment* rule : std::initializer_list<const WeightEnrichment*>{grid.get(), &visibility, &diffraction}) {
+  VisibilityRule visibility(c, 1, nodes, support);
+  DiffractionRule diffraction(c, 1, nodes, support);
+  for (const EnrichmentRule* rule :
+       std::initializer_list<const EnrichmentRule*>{grid.get(), &visibility, &diffraction}) {
     EXPECT_EQ(rule->factor(0, Vec3(0.12, 0.05, 0)).value, 1.0);
     EXPECT_EQ(rule->factor(0, Vec3(0.12, -0.05, 0)).value, 0.0);
   }
   // A point on the cut is seen from the + side, not from below.
   const std::vector<Vec3> below = {Vec3(0.1, -0.05, 0)};
-  VisibilityEnrichment from_below(c, 1, below, support);
-  DiffractionEnrichment around_below(c, 1, below, support);
+  VisibilityRule from_below(c, 1, below, support);
+  DiffractionRule around_below(c, 1, below, support);
   EXPECT_EQ(from_below.factor(0, Vec3(0.12, 0.0, 0)).value, 0.0);
   EXPECT_LT(around_below.factor(0, Vec3(0.12, 0.0, 0)).value, 1e-3);
 }
 
-TEST(WeightEnrichment, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
+TEST(EnrichmentRule, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
   const CutSurface c = kinked_2d();
   std::vector<Vec3> nodes;
   std::vector<double> support;
@@ -209,7 +210,7 @@ TEST(WeightEnrichment, EnrichedMlsReproducesLinearFieldsNextToTheCut) {
       support.push_back(2.6 * h);
     }
   const auto grid_owner = grid_rule(c, c.piece_count(), nodes, support);
-  const GridEnrichment& grid = *grid_owner;
+  const GridRule& grid = *grid_owner;
   auto field = [](const Vec3& x) { return 0.3 + 2.0 * x.x() - 1.5 * x.y(); };
   std::mt19937 random(11);
   std::uniform_real_distribution<double> u(-0.7, 0.7);

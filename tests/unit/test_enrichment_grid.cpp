@@ -9,7 +9,7 @@
 
 #include "core/check.h"
 #include "discretization/enrichment/enrichment_grid.h"
-#include "discretization/enrichment/grid_enrichment.h"
+#include "discretization/enrichment/grid_rule.h"
 #include "geometry/neighbor_search.h"
 
 namespace kerf {
@@ -67,7 +67,7 @@ std::vector<Index> reached(const CutSurface& cut, Index pieces, const Cloud& c) 
 void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool local) {
   const double spacing = 0.02;
   const Index first = cut.pieces_at(0.0);
-  GridEnrichment growing(cut, first, spacing, lookup, c.nodes, c.support, reached(cut, first, c));
+  GridRule growing(cut, first, spacing, lookup, c.nodes, c.support, reached(cut, first, c));
   std::mt19937 random(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   for (Index pieces = first + 1; pieces <= cut.piece_count(); ++pieces) {
@@ -83,7 +83,7 @@ void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool
         before[I].push_back(growing.factor(static_cast<Index>(I), samples[I].back()).value);
       }
     }
-    // The new piece reaches these nodes (what CutEnrichment finds with its k-d tree).
+    // The new piece reaches these nodes (what CutWeights finds with its k-d tree).
     std::vector<Index> new_reach;
     for (std::size_t I = 0; I < c.nodes.size(); ++I)
       if (distance_to_cut(cut, pieces - 1, pieces, c.nodes[I]) < c.support[I]) new_reach.push_back(static_cast<Index>(I));
@@ -91,7 +91,7 @@ void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool
     growing.grow(pieces, new_reach, changed);
     std::vector<char> reported(c.nodes.size(), 0);
     for (Index I : changed) reported[I] = 1;
-    const GridEnrichment fresh(cut, pieces, spacing, lookup, c.nodes, c.support, reached(cut, pieces, c));
+    const GridRule fresh(cut, pieces, spacing, lookup, c.nodes, c.support, reached(cut, pieces, c));
     int kept = 0;
     for (std::size_t I = 0; I < c.nodes.size(); ++I) {
       const Index node = static_cast<Index>(I);

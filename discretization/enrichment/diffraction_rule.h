@@ -7,14 +7,13 @@
 // g_I(x) = w(d / d_I) / w(|x - x_I| / d_I). The edge point c is held fixed in
 // the gradient (it minimises d, so d's gradient is (x - c) / |x - c|). Nodes
 // and points lying on the cut count as a hair off its +1 side (off_the_cut).
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/enrichment_rule.h"
 
 namespace kerf {
 
-class DiffractionEnrichment final : public WeightEnrichment {
+class DiffractionRule final : public EnrichmentRule {
  public:
-  DiffractionEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                        std::span<const double> support);
+  DiffractionRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes, std::span<const double> support);
 
   bool enriches(Index node) const override { return enriched_[node]; }
   WeightFactor factor(Index node, const Vec3& x) const override;

@@ -1,11 +1,11 @@
-#include "discretization/enrichment/single_piece_enrichment.h"
+#include "discretization/enrichment/single_piece_rule.h"
 
 #include <limits>
 
 namespace kerf {
 
-SinglePieceEnrichment::SinglePieceEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                                             std::span<const double> support)
+SinglePieceRule::SinglePieceRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
+                                 std::span<const double> support)
     : cut_(cut) {
   for (Index k = 0; k < pieces; ++k) piece_frame_.push_back(common_frame(cut_, k, k + 1));
   enriched_ = nodes_reached(cut_, pieces, nodes, support);
@@ -23,7 +23,7 @@ SinglePieceEnrichment::SinglePieceEnrichment(const CutSurface& cut, Index pieces
   }
 }
 
-WeightFactor SinglePieceEnrichment::factor(Index node, const Vec3& x) const {
+WeightFactor SinglePieceRule::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
   const Index k = nearest_[node];
   const PhiValue p = grid_phi(cut_, k, k + 1, piece_frame_[k], x);

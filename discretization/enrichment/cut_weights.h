@@ -1,16 +1,11 @@
 #pragma once
-// How cuts enter the MLS shape functions (DESIGN.md): node I's weight becomes
-// w_I(x) g_I(x), with g_I in [0, 1] vanishing where x is hidden from node I by
-// a cut. Only nodes whose support reaches a cut are enriched (g = 1 for the
-// others). One implementation per rule: the Enrichment Grid, Barbieri's
-// single-piece and multiplicative rules, visibility and diffraction; and
-// CutEnrichment, all of a scene's cuts as they grow.
+// Every cut of a scene entering the MLS weights as time goes on: each cut's
+// rule (the scene's `enrichment`), their factors multiplied.
 #include <memory>
 #include <span>
 #include <vector>
 
-#include "core/types.h"
-#include "geometry/cut_surface.h"
+#include "discretization/enrichment/enrichment_rule.h"
 #include "geometry/neighbor_search.h"
 #include "problem/scene.h"
 
@@ -18,41 +13,18 @@ namespace kerf {
 
 class EnrichmentGrid;
 
-struct WeightFactor {
-  double value = 1.0;
-  Vec3 gradient = Vec3::Zero();  // 1/m
-};
-
-/// (a b) and (a b)' = a' b + a b': how factors combine.
-inline WeightFactor operator*(const WeightFactor& a, const WeightFactor& b) {
-  return {a.value * b.value, a.gradient * b.value + a.value * b.gradient};
-}
-
-class WeightEnrichment {
- public:
-  virtual ~WeightEnrichment() = default;
-  /// Does a cut change node I's weight anywhere?
-  virtual bool enriches(Index node) const = 0;
-  /// g_I(x) and its gradient.
-  virtual WeightFactor factor(Index node, const Vec3& x) const = 0;
-};
-
-/// The nodes a cut's first `pieces` pieces reach: distance to the cut below the support radius.
-std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                                std::span<const double> support);
-
 /// Every cut of a scene at the current time; their factors multiply
 /// (separate cuts are separate surfaces). A piece joins its cut at the time
 /// of its last vertex; advance_to() brings the cuts to a later time and tells
 /// which nodes' factors changed. The grid rule updates incrementally; the
 /// other rules (baselines) are rebuilt and report the nodes the new pieces reach.
-class CutEnrichment final : public WeightEnrichment {
+class CutWeights final : public EnrichmentRule {
  public:
   /// `cuts` and `surfaces` are parallel (the surfaces are kept here); nodes and support radii in metres;
   /// `index` is a k-d tree over the nodes and must outlive this object.
-  CutEnrichment(std::span<const Cut> cuts, std::vector<CutSurface> surfaces, std::span<const Vec3> nodes,
-                std::span<const double> support, const PointIndex& index, double time);
-  ~CutEnrichment() override;
+  CutWeights(std::span<const Cut> cuts, std::vector<CutSurface> surfaces, std::span<const Vec3> nodes,
+             std::span<const double> support, const PointIndex& index, double time);
+  ~CutWeights() override;
 
   /// Is any piece of any cut present?
   bool present() const;
@@ -75,11 +47,11 @@ class CutEnrichment final : public WeightEnrichment {
     Cut cut;
     CutSurface surface;
     Index pieces = 0;
-    std::unique_ptr<WeightEnrichment> rule;
+    std::unique_ptr<EnrichmentRule> rule;
   };
   /// The nodes whose support reaches pieces [first, last) of a surface, sorted.
   std::vector<Index> reached_by(const CutSurface& surface, Index first, Index last) const;
-  std::unique_ptr<WeightEnrichment> make_rule(const Part& part, std::span<const Index> reached) const;
+  std::unique_ptr<EnrichmentRule> make_rule(const Part& part, std::span<const Index> reached) const;
 
   std::vector<Part> parts_;
   std::vector<Vec3> nodes_;

@@ -7,14 +7,13 @@
 // touches the cut at one of its two ends is not blocked. Nodes and points
 // lying on the cut count as a hair off its +1 side (off_the_cut), where the
 // grid places them, so they see one side only instead of gluing the faces.
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/enrichment_rule.h"
 
 namespace kerf {
 
-class VisibilityEnrichment final : public WeightEnrichment {
+class VisibilityRule final : public EnrichmentRule {
  public:
-  VisibilityEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                       std::span<const double> support);
+  VisibilityRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes, std::span<const double> support);
 
   bool enriches(Index node) const override { return enriched_[node]; }
   WeightFactor factor(Index node, const Vec3& x) const override;

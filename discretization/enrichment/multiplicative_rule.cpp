@@ -1,9 +1,9 @@
-#include "discretization/enrichment/multiplicative_enrichment.h"
+#include "discretization/enrichment/multiplicative_rule.h"
 
 namespace kerf {
 
-MultiplicativeEnrichment::MultiplicativeEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                                                   std::span<const double> support)
+MultiplicativeRule::MultiplicativeRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
+                                       std::span<const double> support)
     : cut_(cut) {
   for (Index k = 0; k < pieces; ++k) frame_.push_back(common_frame(cut_, k, k + 1));
   const Index n = static_cast<Index>(nodes.size());
@@ -18,7 +18,7 @@ MultiplicativeEnrichment::MultiplicativeEnrichment(const CutSurface& cut, Index 
   }
 }
 
-WeightFactor MultiplicativeEnrichment::factor(Index node, const Vec3& x) const {
+WeightFactor MultiplicativeRule::factor(Index node, const Vec3& x) const {
   WeightFactor g;
   for (Index j = start_[node]; j < start_[node + 1]; ++j) {
     const Index k = piece_[j];

@@ -1,4 +1,4 @@
-#include "discretization/enrichment/diffraction_enrichment.h"
+#include "discretization/enrichment/diffraction_rule.h"
 
 #include <limits>
 
@@ -6,8 +6,8 @@
 
 namespace kerf {
 
-DiffractionEnrichment::DiffractionEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                                             std::span<const double> support)
+DiffractionRule::DiffractionRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
+                                 std::span<const double> support)
     : cut_(cut),
       pieces_(pieces),
       nodes_(nodes.begin(), nodes.end()),
@@ -27,7 +27,7 @@ DiffractionEnrichment::DiffractionEnrichment(const CutSurface& cut, Index pieces
   edges_.push_back({v[pieces_], v[pieces_ + 1]});
 }
 
-Vec3 DiffractionEnrichment::bend_point(const Vec3& a, const Vec3& b) const {
+Vec3 DiffractionRule::bend_point(const Vec3& a, const Vec3& b) const {
   Vec3 best = edges_.front()[0];
   double best_length = std::numeric_limits<double>::infinity();
   for (const auto& e : edges_) {
@@ -50,7 +50,7 @@ Vec3 DiffractionEnrichment::bend_point(const Vec3& a, const Vec3& b) const {
   return best;
 }
 
-WeightFactor DiffractionEnrichment::factor(Index node, const Vec3& x) const {
+WeightFactor DiffractionRule::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
   const Vec3& a = viewpoints_[node];
   if (!segment_crosses_cut(cut_, 0, pieces_, a, off_the_cut(cut_, pieces_, x))) return {};

@@ -1,12 +1,11 @@
-#include "discretization/enrichment/grid_enrichment.h"
+#include "discretization/enrichment/grid_rule.h"
 
 #include <algorithm>
 
 namespace kerf {
 
-GridEnrichment::GridEnrichment(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup,
-                               std::span<const Vec3> nodes, std::span<const double> support,
-                               std::span<const Index> reached)
+GridRule::GridRule(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup, std::span<const Vec3> nodes,
+                   std::span<const double> support, std::span<const Index> reached)
     : cut_(cut),
       spacing_(spacing),
       padding_(2.0 * (support.empty() ? 0.0 : *std::max_element(support.begin(), support.end()))),
@@ -19,24 +18,24 @@ GridEnrichment::GridEnrichment(const CutSurface& cut, Index pieces, double spaci
   for (Index I : reached) enrich(I);
 }
 
-PhiValue GridEnrichment::phi(const Vec3& x) const {
+PhiValue GridRule::phi(const Vec3& x) const {
   return lookup_ == GridLookup::exact ? grid_->exact(x) : grid_->interpolated(x);
 }
 
-void GridEnrichment::enrich(Index node) {
+void GridRule::enrich(Index node) {
   if (!enriched_[node]) enriched_list_.push_back(node);
   enriched_[node] = 1;
   // The side from the exact phi: a node's side must not depend on the lookup.
   side_[node] = grid_->exact(nodes_[node]).value >= 0.0 ? 1 : -1;
 }
 
-WeightFactor GridEnrichment::factor(Index node, const Vec3& x) const {
+WeightFactor GridRule::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
   const PhiValue p = phi(x);
   return {0.5 * (1.0 + side_[node] * p.value), 0.5 * side_[node] * p.gradient};
 }
 
-void GridEnrichment::grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed) {
+void GridRule::grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed) {
   std::unique_ptr<EnrichmentGrid> before = std::move(grid_);
   grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_);
   const std::vector<char> columns = grid_->changed_columns(*before);

@@ -8,19 +8,20 @@
 #include <memory>
 
 #include "discretization/enrichment/enrichment_grid.h"
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/enrichment_rule.h"
+#include "problem/scene.h"
 
 namespace kerf {
 
-class GridEnrichment final : public WeightEnrichment {
+class GridRule final : public EnrichmentRule {
  public:
   /// The cut's first `pieces` pieces (> 0); `reached`: the nodes whose support
-  /// reaches them. `nodes` and `support` are viewed, not copied: they must outlive this. Lattice spacing in m; the lattice reaches twice the largest
-  /// support radius beyond the cut (as far as a covered point can be).
-  GridEnrichment(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup, std::span<const Vec3> nodes,
-                 std::span<const double> support, std::span<const Index> reached);
-  GridEnrichment(const GridEnrichment&) = delete;
-  GridEnrichment& operator=(const GridEnrichment&) = delete;
+  /// reaches them. `nodes` and `support` are viewed, not copied: they must outlive this. Lattice spacing in m; the
+  /// lattice reaches twice the largest support radius beyond the cut (as far as a covered point can be).
+  GridRule(const CutSurface& cut, Index pieces, double spacing, GridLookup lookup, std::span<const Vec3> nodes,
+           std::span<const double> support, std::span<const Index> reached);
+  GridRule(const GridRule&) = delete;
+  GridRule& operator=(const GridRule&) = delete;
 
   bool enriches(Index node) const override { return enriched_[node]; }
   WeightFactor factor(Index node, const Vec3& x) const override;

@@ -3,15 +3,14 @@
 // phi of the one piece nearest to it, g_I(x) = (1 + sigma_I phi_k(x)) / 2,
 // sigma_I = +1 or -1 the side of node I (phi(x_I) >= 0 is the + side).
 #include "discretization/enrichment/cut_phi.h"
-#include "discretization/enrichment/weight_enrichment.h"
+#include "discretization/enrichment/enrichment_rule.h"
 
 namespace kerf {
 
-class SinglePieceEnrichment final : public WeightEnrichment {
+class SinglePieceRule final : public EnrichmentRule {
  public:
   /// The cut's first `pieces` pieces (> 0), for these nodes.
-  SinglePieceEnrichment(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
-                        std::span<const double> support);
+  SinglePieceRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes, std::span<const double> support);
 
   bool enriches(Index node) const override { return enriched_[node]; }
   WeightFactor factor(Index node, const Vec3& x) const override;
@@ -20,8 +19,8 @@ class SinglePieceEnrichment final : public WeightEnrichment {
   CutSurface cut_;
   std::vector<CutFrame> piece_frame_;  // each piece's own frame
   std::vector<char> enriched_;
-  std::vector<signed char> side_;      // sigma_I
-  std::vector<Index> nearest_;         // node I's piece
+  std::vector<signed char> side_;  // sigma_I
+  std::vector<Index> nearest_;     // node I's piece
 };
 
 }  // namespace kerf

@@ -1,0 +1,13 @@
+#include "discretization/enrichment/enrichment_rule.h"
+
+namespace kerf {
+
+std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
+                                std::span<const double> support) {
+  std::vector<char> reached(nodes.size(), 0);
+#pragma omp parallel for schedule(dynamic, 256)
+  for (std::size_t I = 0; I < nodes.size(); ++I) reached[I] = distance_to_cut(cut, 0, pieces, nodes[I]) < support[I];
+  return reached;
+}
+
+}  // namespace kerf
