@@ -25,6 +25,7 @@ class CholmodSolver final : public LinearSolver {
     cholmod_finish(&common_);
   }
   std::string name() const override { return "cholmod"; }
+  bool exact_factor() const override { return true; }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     SingleThreadScope single;

@@ -42,6 +42,7 @@ class EigenCgSolver final : public LinearSolver {
 class EigenLdltSolver final : public LinearSolver {
  public:
   std::string name() const override { return "ldlt"; }
+  bool exact_factor() const override { return true; }
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     ldlt_.analyzePattern(ColumnMatrix(pattern));
     return LinearSolverStatus::success();

@@ -42,8 +42,7 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
   solver_->set_near_null_space(rigid_body_modes(body_, free_));
-  reuse_factorization_ = !body_.is_linear() && (options.linear_solver == LinearSolverKind::cholmod ||
-                                                options.linear_solver == LinearSolverKind::ldlt);
+  reuse_factorization_ = !body_.is_linear() && solver_->exact_factor();
   if (needs_mass) {
     has_mass_ = true;
     lumped_ = options.mass == MassKind::lumped;

@@ -28,6 +28,10 @@ class LinearSolver {
   virtual LinearSolverStatus solve(const Vector& b, Vector& x) = 0;
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }
+  /// Whether solve() applies an exact factorization of the last factorized
+  /// matrix, which may then precondition conjugate gradients on a later matrix
+  /// of the same pattern instead of factorizing it (direct solvers).
+  virtual bool exact_factor() const { return false; }
   /// Vectors the operator nearly annihilates (rigid-body modes), for solvers
   /// that build coarse spaces from them (algebraic multigrid); before analyze().
   virtual void set_near_null_space(const std::vector<Vector>& modes) {}
