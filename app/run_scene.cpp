@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "app/probe_set.h"
+#include "app/summary_json.h"
 #include "core/check.h"
 #include "core/run_report.h"
 #include "discretization/body_factory.h"
@@ -50,31 +51,6 @@ void refuse_unrunnable(const Scene& scene) {
 
 namespace {
 
-json milliseconds_summary(std::vector<double> seconds) {
-  if (seconds.empty()) return {{"median", 0.0}, {"mean", 0.0}, {"max", 0.0}};
-  std::sort(seconds.begin(), seconds.end());
-  double sum = 0.0;
-  for (double s : seconds) sum += s;
-  std::size_t n = seconds.size();
-  double median = n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
-  return {{"median", 1e3 * median}, {"mean", 1e3 * sum / n}, {"max", 1e3 * seconds.back()}};
-}
-
-void fill_report(json& summary, const RunReport& report) {
-  json phases = json::object();
-  for (const auto& [name, seconds] : report.phases.all()) phases[name + "_s"] = seconds;
-  summary["timing"]["phases"] = phases;
-  summary["timing"]["step_ms"] = milliseconds_summary(report.step_seconds);
-  json cut_update = milliseconds_summary(report.cut_update_seconds);
-  cut_update["count"] = report.cut_update_seconds.size();
-  summary["timing"]["cut_update_ms"] = cut_update;
-  json cut_refresh = milliseconds_summary(report.cut_refresh_seconds);
-  cut_refresh["count"] = report.cut_refresh_seconds.size();
-  summary["timing"]["cut_refresh_ms"] = cut_refresh;
-  summary["stages"] = report.stages;
-  if (!report.counters.empty()) summary["solver"] = report.counters;
-}
-
 /// Pieces of all the scene's cuts present at time t.
 Index pieces_at(const std::vector<CutSurface>& cuts, double t) {
   Index count = 0;
@@ -111,10 +87,10 @@ void remesh_for_cuts(const Scene& scene, RunParts& run, SolverState& state, RunR
   const double refreshed = now_seconds();
   report.cut_update_seconds.push_back(updated - start);
   report.cut_refresh_seconds.push_back(refreshed - updated);
-  report.phases.add("cut_update", refreshed - start);
-  for (const auto& [name, value] : remesh_report.counters) report.counters[name] += value;
-  report.counters["cut_remeshes"] += 1;
-  report.counters["cut_updated_nodes"] += run.body->node_count();
+  report.phases.add(Phase::cut_update, refreshed - start);
+  report.cuts.removed_cells += remesh_report.cuts.removed_cells;
+  report.cuts.remeshes += 1;
+  report.cuts.updated_nodes += run.body->node_count();
 }
 
 /// A cut that grew by this state's time changes the body's shape functions
@@ -128,9 +104,9 @@ void advance_cuts(DiscreteBody& body, Stepper& stepper, SolverState& state, RunR
   const double refreshed = now_seconds();
   report.cut_update_seconds.push_back(updated - start);
   report.cut_refresh_seconds.push_back(refreshed - updated);
-  report.phases.add("cut_update", refreshed - start);
-  report.counters["cut_updated_nodes"] += update->nodes;
-  report.counters["cut_updated_points"] += update->points;
+  report.phases.add(Phase::cut_update, refreshed - start);
+  report.cuts.updated_nodes += update->nodes;
+  report.cuts.updated_points += update->points;
 }
 
 }  // namespace
@@ -147,7 +123,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   summary = {{"kerf_version", version}, {"scene", scene_to_json(resolved)}, {"status", "running"}};
   write_file_atomically(summary_path, summary.dump(2));
 
-  RunReport report;
+  RunReport& report = outcome.report;
   const double start = now_seconds();
   auto previous_handler = std::signal(SIGINT, [](int) { interrupted = true; });
   interrupted = false;
@@ -158,17 +134,15 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     run.stepper = make_stepper(*run.body, scene, report);
     SolverState state;
     run.stepper->initialize(state);  // timed inside as assembly and factorize
-    summary["counts"] = {{"nodes", run.body->node_count()},
-                         {"dofs", run.body->dof_count()},
-                         {"elements", run.body->element_count()},
-                         {"neighbors_mean", run.body->mean_neighbors()}};
+    report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
+                     run.body->mean_neighbors()};
     // FEM follows a growing cut by meshing again when pieces appear.
     std::vector<CutSurface> fem_cuts;
     if (scene.discretization.method == Method::fem)
       for (const Cut& c : scene.cuts)
         fem_cuts.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
     Index fem_pieces = pieces_at(fem_cuts, 0.0);
-    summary["timing"]["setup_s"] = now_seconds() - start;
+    report.setup_seconds = now_seconds() - start;
 
     const int every = scene.output.vtk_every;
     std::unique_ptr<VtkSeries> vtk;
@@ -180,7 +154,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     std::size_t lattices_written_at = static_cast<std::size_t>(-1);  // cut growths when the grids were written
     Vector reaction, load_before, load_after, u_before;
     auto observe = [&](bool final_step) {
-      ScopedTimer timer(report.phases, "output");
+      ScopedTimer timer(report.phases, Phase::output);
       if (run.probes->needs_reaction()) reaction = run.stepper->reaction(state);
       if (run.probes->needs_energy()) {
         energy.kinetic = run.stepper->kinetic_energy(state);
@@ -217,7 +191,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
       double step_start = now_seconds();
       run.stepper->advance(state, dt);
       report.step_seconds.push_back(now_seconds() - step_start);
-      report.counters["newton_iterations"] += run.stepper->last_iterations();
+      report.solver.newton_iterations += run.stepper->last_iterations();
       if (run.probes->needs_energy()) {  // trapezoidal work of the applied loads, before a cut changes the dofs
         run.stepper->applied_load(state, load_after);
         energy.external_work += 0.5 * (load_before + load_after).dot(state.u - u_before);
@@ -244,14 +218,14 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
         std::fprintf(stderr, "kerf: %s step %d/%d  t = %.6g  (%.3g s)\n", scene.name.c_str(), i, steps, state.t,
                      now_seconds() - start);
     }
-    summary["timing"]["solve_s"] = now_seconds() - loop_start;
-    run.body->add_diagnostics(report.counters);
-    fill_report(summary, report);
+    report.solve_seconds = now_seconds() - loop_start;
+    run.body->add_diagnostics(report.extras);
+    write_report(report, summary);
     summary["status"] = "ok";
     write_file_atomically(summary_path, summary.dump(2));
   } catch (const std::exception& e) {
     std::signal(SIGINT, previous_handler);
-    fill_report(summary, report);
+    write_report(report, summary);
     summary["status"] = "error";
     summary["error"] = e.what();
     write_file_atomically(summary_path, summary.dump(2));

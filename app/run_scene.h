@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/run_report.h"
 #include "problem/scene.h"
 
 namespace kerf {
@@ -14,7 +15,8 @@ struct RunOptions {
 
 struct RunOutcome {
   std::string directory;
-  nlohmann::ordered_json summary;
+  nlohmann::ordered_json summary;  // as written to summary.json
+  RunReport report;                // the same figures, typed
 };
 
 /// Refuses, before any work, what the scene asks for that cannot run: checks

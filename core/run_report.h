@@ -1,22 +1,58 @@
 #pragma once
-// What a run built and how long each phase took: filled by every layer,
-// written to summary.json, so a test can check that a scene got only what it needs.
+// What a run built, counted and how long each phase took: filled by every
+// layer, written to summary.json (app/summary_json.h), so a test can check that
+// a scene got only what it needs and a study can compare methods phase by
+// phase. Typed fields for what every run has; `extras` for figures only some
+// methods have.
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/timer.h"
+#include "core/types.h"
 
 namespace kerf {
 
+/// The discretization's size (summary "counts").
+struct RunCounts {
+  Index nodes = 0, dofs = 0;
+  Index elements = 0;           // cells (FEM) or integration points (meshless)
+  double neighbors_mean = 0.0;  // other nodes a node is coupled to
+};
+
+/// The solvers' work over the run (summary "solver"; zero when a run had none).
+struct SolverCounters {
+  long factorizations = 0;         // numeric factorizations or preconditioner set-ups
+  long linear_iterations = 0;      // iterations of iterative linear solves
+  long pcg_iterations = 0;         // CG iterations preconditioned by a stale factor
+  long newton_iterations = 0;      // Newton's linear solves, summed over the steps
+  long contact_augmentations = 0;  // augmented Lagrangian rounds (static contact)
+  std::optional<double> critical_dt_s;                // central differences: the stable step (s)
+  std::optional<double> critical_dt_element_bound_s;  // FEM's element-by-element bound (s)
+};
+
+/// What growing cuts (and cut-out cells) did to the discretization.
+struct CutCounters {
+  long remeshes = 0;        // FEM bodies meshed again
+  long removed_cells = 0;   // cells deleted (fem: remove), over every mesh built
+  long updated_nodes = 0;   // nodes whose shape functions changed, summed over the growths
+  long updated_points = 0;  // integration points recomputed, summed over the growths
+};
+
 struct RunReport {
-  PhaseTimes phases;                 // setup, assembly, factorize, solve, cut_update, output
+  double setup_seconds = 0.0;  // wall time before the first step: body, stepper, initial state
+  double solve_seconds = 0.0;  // wall time of the step loop
+  PhaseTimes phases;
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
-  std::vector<double> step_seconds;  // wall time of each time step (or load step)
+  RunCounts counts;
+  SolverCounters solver;
+  CutCounters cuts;
+  std::vector<double> step_seconds;         // wall time of each time step (or load step)
   std::vector<double> cut_update_seconds;   // per growth of a cut: the body's update (enrichment, shapes)
   std::vector<double> cut_refresh_seconds;  // per growth: the stepper re-reading mass, forces, factors
-  std::map<std::string, double> counters;  // e.g. factorizations, pcg_iterations
+  std::map<std::string, double> extras;     // method-specific figures (meshless: mls_condition_*)
 
   void add_stage(const std::string& stage) {
     if (std::find(stages.begin(), stages.end(), stage) == stages.end()) stages.push_back(stage);

@@ -1,20 +1,24 @@
 #pragma once
-// Wall-clock phase timing: a ScopedTimer adds its lifetime to a named phase.
+// Wall-clock phase timing: a ScopedTimer adds its lifetime to one of the
+// phases every run is timed in, the same for every method.
+#include <array>
 #include <chrono>
-#include <map>
-#include <string>
 
 namespace kerf {
 
-/// Accumulated seconds per phase (setup, assembly, factorize, solve, cut_update,
-/// output). Timers of different phases never nest, so the phases add up.
+enum class Phase { setup, assembly, factorize, solve, cut_update, output };
+inline constexpr std::array<const char*, 6> phase_names{"setup", "assembly", "factorize", "solve", "cut_update",
+                                                        "output"};
+
+/// Accumulated seconds per phase. Timers of different phases never nest, so
+/// the phases add up.
 class PhaseTimes {
  public:
-  void add(const std::string& phase, double seconds) { seconds_[phase] += seconds; }
-  const std::map<std::string, double>& all() const { return seconds_; }
+  void add(Phase phase, double seconds) { seconds_[static_cast<std::size_t>(phase)] += seconds; }
+  double seconds(Phase phase) const { return seconds_[static_cast<std::size_t>(phase)]; }
 
  private:
-  std::map<std::string, double> seconds_;
+  std::array<double, phase_names.size()> seconds_{};
 };
 
 inline double now_seconds() {
@@ -24,15 +28,14 @@ inline double now_seconds() {
 
 class ScopedTimer {
  public:
-  ScopedTimer(PhaseTimes& times, std::string phase)
-      : times_(times), phase_(std::move(phase)), start_(now_seconds()) {}
+  ScopedTimer(PhaseTimes& times, Phase phase) : times_(times), phase_(phase), start_(now_seconds()) {}
   ~ScopedTimer() { times_.add(phase_, now_seconds() - start_); }
   ScopedTimer(const ScopedTimer&) = delete;
   ScopedTimer& operator=(const ScopedTimer&) = delete;
 
  private:
   PhaseTimes& times_;
-  std::string phase_;
+  Phase phase_;
   double start_;
 };
 

@@ -77,7 +77,7 @@ std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, RunReport& r
   Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, std::move(remeshed));
   report.add_stage("mesh");
   if (!removed.empty()) {
-    report.counters["cut_removed_cells"] += remove_crossed_cells(mesh, removed);
+    report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
   return std::make_unique<FemBody>(scene, std::move(mesh));
@@ -86,7 +86,7 @@ std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, RunReport& r
 }  // namespace
 
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time) {
-  ScopedTimer timer(report.phases, "setup");
+  ScopedTimer timer(report.phases, Phase::setup);
   std::unique_ptr<DiscreteBody> body = make_elastic_body(scene, report, time);
   if (scene.contact.empty()) return body;
   report.add_stage("contact");

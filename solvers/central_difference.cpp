@@ -22,7 +22,7 @@ class CentralDifferenceStepper final : public Stepper {
   CentralDifferenceStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
       : body_(body), report_(report), options_(scene.solve), alpha_(scene.material.damping_mass),
         beta_(scene.material.damping_stiffness), constrained_(body.dirichlet(0.0)) {
-    ScopedTimer timer(report.phases, "setup");
+    ScopedTimer timer(report.phases, Phase::setup);
     report.add_stage("mass");
     mass_ = body_.lumped_mass();
     KERF_CHECK((mass_.array() > 0.0).all(), "the lumped mass has a zero or negative entry: central differences need a "
@@ -37,9 +37,9 @@ class CentralDifferenceStepper final : public Stepper {
     EigenvalueBound omega2 = largest_eigenvalue(K, mass_, FreeDofs(body_.dof_count(), constrained_));
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
     critical_step_ = damped_critical_step(std::max(lanczos_step, element_bound_step.value_or(0.0)), beta_);
-    report.counters["critical_dt_s"] = critical_step_;
+    report.solver.critical_dt_s = critical_step_;
     if (element_bound_step)
-      report.counters["critical_dt_element_bound_s"] = damped_critical_step(*element_bound_step, beta_);
+      report.solver.critical_dt_element_bound_s = damped_critical_step(*element_bound_step, beta_);
     if (options_.dt > critical_step_ && !options_.allow_unstable_dt) {
       std::ostringstream why;
       why << scene.file << ": key 'solve.dt': value " << options_.dt
@@ -69,7 +69,7 @@ class CentralDifferenceStepper final : public Stepper {
     body_.external_force(t1, f_ext_);
     // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
     {
-      ScopedTimer timer(report_.phases, "assembly");  // the explicit step's phase studies compare
+      ScopedTimer timer(report_.phases, Phase::assembly);  // the explicit step's phase studies compare
       if (beta_ != 0.0) {
         damped_u_ = s.u + beta_ * half_velocity_;
         body_.internal_force(damped_u_, f_int_);

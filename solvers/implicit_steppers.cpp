@@ -61,7 +61,7 @@ class StaticStepper final : public Stepper {
       result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
       result_.iterations += before;
     }
-    if (round > 0) report_.counters["contact_augmentations"] += round;
+    if (round > 0) report_.solver.contact_augmentations += round;
     s.t = load;
     ++s.step;
   }

@@ -29,7 +29,7 @@ std::vector<Vector> rigid_body_modes(const DiscreteBody& body, const FreeDofs& f
 ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass,
                                RunReport& report)
     : body_(body), report_(report), free_(body.dof_count(), body.dirichlet(0.0)) {
-  ScopedTimer timer(report_.phases, "setup");
+  ScopedTimer timer(report_.phases, Phase::setup);
   KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
   stiffness_ = build_pattern(body_);
   system_ = stiffness_;
@@ -73,7 +73,7 @@ void ImplicitSystem::discretization_changed() {
 }
 
 void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangent) {
-  ScopedTimer timer(report_.phases, "assembly");
+  ScopedTimer timer(report_.phases, Phase::assembly);
   if (const DiscreteBody* linear = body_.linear_part()) {
     // A linear body with contact: the body's stiffness once, the rest at every call.
     if (linear_values_.empty()) {
@@ -132,7 +132,7 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
   if (!stiffness_changed_ && cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_) return;
   KERF_CHECK(stiffness_assembled_ || ck == 0.0, "internal: matrix update before the stiffness was assembled");
   {
-    ScopedTimer timer(report_.phases, "assembly");
+    ScopedTimer timer(report_.phases, Phase::assembly);
     const Index nnz = stiffness_.nonZeros();
     const double* k = stiffness_.valuePtr();
     double* a = system_.valuePtr();
@@ -157,14 +157,14 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
 }
 
 void ImplicitSystem::factorize_now(const std::string& where) {
-  ScopedTimer timer(report_.phases, "factorize");
+  ScopedTimer timer(report_.phases, Phase::factorize);
   if (!analyzed_) {
     LinearSolverStatus status = solver_->analyze(free_.restricted());
     KERF_CHECK(status.ok, where, ": ", status.message);
     analyzed_ = true;
   }
   report_.add_stage("factorization");
-  report_.counters["factorizations"] += 1;
+  report_.solver.factorizations += 1;
   LinearSolverStatus status = solver_->factorize(free_.restricted());
   KERF_CHECK(status.ok, where, ": ", status.message);
   factor_stale_ = false;
@@ -203,7 +203,7 @@ bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::st
     double alpha = rz / pAp;
     x += alpha * p;
     r -= alpha * Ap;
-    report_.counters["pcg_iterations"] += 1;
+    report_.solver.pcg_iterations += 1;
     if (r.norm() <= tolerance * b_norm) return true;
     precondition(r, z);
     double rz_next = r.dot(z);
@@ -218,7 +218,7 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   if (factor_stale_) {
     bool converged;
     {
-      ScopedTimer timer(report_.phases, "solve");
+      ScopedTimer timer(report_.phases, Phase::solve);
       converged = preconditioned_cg(rhs_free, x, where) && x.allFinite();
     }
     if (converged) {
@@ -227,10 +227,10 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
     }
     factorize_now(where);  // timed as "factorize"
   }
-  ScopedTimer timer(report_.phases, "solve");
+  ScopedTimer timer(report_.phases, Phase::solve);
   LinearSolverStatus status = solver_->solve(rhs_free, x);
   KERF_CHECK(status.ok, where, ": ", status.message);
-  report_.counters["linear_iterations"] += solver_->last_iterations();
+  report_.solver.linear_iterations += solver_->last_iterations();
   KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
   previous_solution_ = x;
   return x;

@@ -55,7 +55,7 @@ void implicit_step(benchmark::State& state, const std::string& solver) {
   }
   std::sort(steps.begin(), steps.end());
   state.counters["median_step_ms"] = 1e3 * steps[steps.size() / 2];
-  state.counters["factorizations"] = report.counters["factorizations"];
+  state.counters["factorizations"] = report.solver.factorizations;
   state.counters["nodes"] = body->node_count();
   state.counters["dofs"] = body->dof_count();
 }
@@ -73,7 +73,7 @@ void BM_CentralDifferenceStepCorotational(benchmark::State& state) {
   auto probe_body = make_body(probe, probe_report);
   make_stepper(*probe_body, probe, probe_report);
   Scene scene = probe;
-  scene.solve.dt = 0.9 * probe_report.counters["critical_dt_s"];
+  scene.solve.dt = 0.9 * probe_report.solver.critical_dt_s.value();
   RunReport report;
   auto body = make_body(scene, report);
   auto stepper = make_stepper(*body, scene, report);

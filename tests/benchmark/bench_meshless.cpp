@@ -60,7 +60,7 @@ void BM_NodalExplicitStep(benchmark::State& state) {
   state.counters["median_step_ms"] = 1e3 * steps[steps.size() / 2];
   state.counters["nodes"] = body->node_count();
   state.counters["neighbors_mean"] = body->mean_neighbors();
-  state.counters["critical_dt_ms"] = 1e3 * report.counters["critical_dt_s"];
+  state.counters["critical_dt_ms"] = 1e3 * report.solver.critical_dt_s.value();
 }
 
 // Setup of the body alone: lattice, Delaunay volumes, k-d tree, neighbour

@@ -1,0 +1,63 @@
+#include "app/summary_json.h"
+
+#include <algorithm>
+
+namespace kerf {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+json milliseconds_summary(std::vector<double> seconds) {
+  if (seconds.empty()) return {{"median", 0.0}, {"mean", 0.0}, {"max", 0.0}};
+  std::sort(seconds.begin(), seconds.end());
+  double sum = 0.0;
+  for (double s : seconds) sum += s;
+  const std::size_t n = seconds.size();
+  const double median = n % 2 ? seconds[n / 2] : 0.5 * (seconds[n / 2 - 1] + seconds[n / 2]);
+  return {{"median", 1e3 * median}, {"mean", 1e3 * sum / n}, {"max", 1e3 * seconds.back()}};
+}
+
+json counted_milliseconds(const std::vector<double>& seconds) {
+  json out = milliseconds_summary(seconds);
+  out["count"] = seconds.size();
+  return out;
+}
+
+json solver_counters(const RunReport& report) {
+  const SolverCounters& s = report.solver;
+  const CutCounters& c = report.cuts;
+  json out = {{"factorizations", s.factorizations},
+              {"linear_iterations", s.linear_iterations},
+              {"pcg_iterations", s.pcg_iterations},
+              {"newton_iterations", s.newton_iterations},
+              {"contact_augmentations", s.contact_augmentations},
+              {"cut_remeshes", c.remeshes},
+              {"cut_removed_cells", c.removed_cells},
+              {"cut_updated_nodes", c.updated_nodes},
+              {"cut_updated_points", c.updated_points}};
+  if (s.critical_dt_s) out["critical_dt_s"] = *s.critical_dt_s;
+  if (s.critical_dt_element_bound_s) out["critical_dt_element_bound_s"] = *s.critical_dt_element_bound_s;
+  for (const auto& [name, value] : report.extras) out[name] = value;
+  return out;
+}
+
+}  // namespace
+
+void write_report(const RunReport& report, json& summary) {
+  const RunCounts& n = report.counts;
+  summary["counts"] = {
+      {"nodes", n.nodes}, {"dofs", n.dofs}, {"elements", n.elements}, {"neighbors_mean", n.neighbors_mean}};
+  json phases = json::object();
+  for (std::size_t p = 0; p < phase_names.size(); ++p)
+    phases[std::string(phase_names[p]) + "_s"] = report.phases.seconds(static_cast<Phase>(p));
+  summary["timing"] = {{"setup_s", report.setup_seconds},
+                       {"solve_s", report.solve_seconds},
+                       {"phases", phases},
+                       {"step_ms", milliseconds_summary(report.step_seconds)},
+                       {"cut_update_ms", counted_milliseconds(report.cut_update_seconds)},
+                       {"cut_refresh_ms", counted_milliseconds(report.cut_refresh_seconds)}};
+  summary["stages"] = report.stages;
+  summary["solver"] = solver_counters(report);
+}
+
+}  // namespace kerf
