@@ -19,6 +19,7 @@
 #include "output/probe_table.h"
 #include "output/vtk_series.h"
 #include "problem/scene_json.h"
+#include "problem/scene_validation.h"
 #include "solvers/stepper.h"
 
 namespace kerf {
@@ -31,22 +32,8 @@ std::atomic<bool> interrupted{false};
 }  // namespace
 
 void refuse_unrunnable(const Scene& scene) {
-  for (const Cut& cut : scene.cuts) {
-    const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
-    KERF_CHECK(scene.contact.empty() || !grows, cut.where.describe(),
-               ": key 'times': contact with a growing cut is not built yet (the contact points' shape functions "
-               "would go stale as the cut grows); expected every vertex at t = 0, or no contact");
-    const bool fem = scene.discretization.method == Method::fem;
-    KERF_CHECK(!fem || cut.fem != FemCut::remesh || scene.box, cut.where.describe(),
-               ": key 'fem': value remesh: FEM remeshes around a cut only in a box domain (domain.mesh is read "
-               "as it is); expected fem: remove, or domain.box");
-    cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
-    for (std::size_t i = 0; i < cut.times.size(); ++i)
-      KERF_CHECK(cut.times[i] <= 0.0 || scene.discretization.method != Method::efg, cut.where.describe(),
-                 ": key 'times': value ", cut.times[i], " at vertex ", i,
-                 ": a growing cut in efg (the Gauss points, loads and weak constraints updated) is not built yet; "
-                 "expected discretization.method nodal or fem, or every vertex present at t = 0");
-  }
+  validate(scene);
+  for (const Cut& cut : scene.cuts) cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
 }
 
 namespace {

@@ -2,6 +2,7 @@
 // The parsed, validated scene: every key of SCENES.md with its default filled in.
 // Units are SI (m, kg, s, Pa, N). In 2D (plane strain) vectors keep z = 0.
 #include <array>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -17,8 +18,13 @@ struct SourceLocation {
   int column = 0;  // 1-based
   std::string key; // dotted path, e.g. "boundary.1.traction"
   bool command_line = false;  // the value came from --set
+  std::string text;           // the value as written ("'0.5'", "nothing (the key is missing)"); "" in code
   std::string describe() const;
 };
+
+/// Every key a scene file's reader looked at, by dotted path: the validation
+/// names them in its messages. Empty for a scene built in code.
+using KeyLocations = std::map<std::string, SourceLocation>;
 
 enum class MaterialModel { linear, corotational, stvk, neohookean };
 enum class Method { fem, efg, nodal };
@@ -175,6 +181,11 @@ struct Scene {
   std::vector<Cut> cuts;
   SolveOptions solve;
   OutputOptions output;
+  KeyLocations sources;  // where each key came from (scenes read from a file)
+
+  /// Where `key` came from: its file position and text when read from a file,
+  /// else the scene's file (if any) and the key alone.
+  SourceLocation locate(const std::string& key) const;
 };
 
 /// The scene file's spelling of each value of an enum, in declaration order:

@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "problem/scene_overrides.h"
+#include "problem/scene_validation.h"
 #include "problem/yaml_access.h"
 
 namespace kerf {
@@ -13,25 +14,17 @@ namespace {
 
 namespace fs = std::filesystem;
 
-void require_positive(const YamlField& f, double value, const char* expected) {
-  if (!(value > 0.0)) f.out_of_range(expected);
-}
-
 Box read_box(const YamlField& f, int dim) {
   f.allow_only({"min", "max"});
   Box box;
   box.min = f["min"].vector(dim);
   box.max = f["max"].vector(dim);
-  for (int i = 0; i < dim; ++i)
-    if (!(box.min[i] <= box.max[i])) f["max"].out_of_range("max >= min in every component");
   return box;
 }
 
-int read_axis(const YamlField& f, int dim) {
+int read_axis(const YamlField& f) {
   static constexpr std::array<const char*, 3> axes{"x", "y", "z"};
-  int axis = f.choice(axes);
-  if (axis >= dim) f.out_of_range("x or y in 2D");
-  return axis;
+  return f.choice(axes);
 }
 
 Selection read_selection(const YamlField& f, int dim) {
@@ -43,7 +36,7 @@ Selection read_selection(const YamlField& f, int dim) {
     YamlField p = f["plane"];
     p.allow_only({"axis", "at"});
     s.kind = Selection::Kind::plane;
-    s.axis = read_axis(p["axis"], dim);
+    s.axis = read_axis(p["axis"]);
     s.at = p["at"].number();
   } else if (kind == "box") {
     s.kind = Selection::Kind::box;
@@ -60,7 +53,7 @@ std::array<bool, 3> read_fixed_components(const YamlField& f, int dim) {
     f.fail("expected a list of components such as [x, y" + std::string(dim == 3 ? ", z]" : "]") +
            ", found " + f.value_text());
   std::array<bool, 3> fixed{false, false, false};
-  for (std::size_t i = 0; i < f.size(); ++i) fixed[read_axis(f[i], dim)] = true;
+  for (std::size_t i = 0; i < f.size(); ++i) fixed[read_axis(f[i])] = true;
   return fixed;
 }
 
@@ -70,24 +63,10 @@ BoundaryCondition read_boundary_item(const YamlField& f, int dim) {
   f.allow_only({"select", "fix", "displacement", "traction", "pressure"});
   if (!f.has("select")) f.fail("missing 'select': which part of the boundary this item applies to");
   bc.select = read_selection(f["select"], dim);
-  if (bc.select.kind == Selection::Kind::point && (f.has("traction") || f.has("pressure")))
-    f["select"].fail("a point selection holds a node, not boundary faces; traction and pressure "
-                     "need a plane or box selection");
   if (f.has("fix")) bc.fixed = read_fixed_components(f["fix"], dim);
   if (f.has("displacement")) bc.displacement = f["displacement"].optional_vector(dim);
   if (f.has("traction")) bc.traction = f["traction"].vector(dim);
   if (f.has("pressure")) bc.pressure = f["pressure"].number();
-  bool dirichlet = f.has("fix") || f.has("displacement");
-  bool neumann = f.has("traction") || f.has("pressure");
-  if (!dirichlet && !neumann)
-    f.fail("expected at least one of fix | displacement | traction | pressure");
-  if (dirichlet && neumann)
-    f.fail("an item either prescribes displacements (fix, displacement) or loads "
-           "(traction, pressure), not both; use two items");
-  for (int i = 0; i < 3; ++i)
-    if (bc.fixed[i] && bc.displacement[i])
-      f["displacement"].fail("component " + std::string(1, "xyz"[i]) +
-                             " is both fixed and prescribed");
   return bc;
 }
 
@@ -96,18 +75,13 @@ void read_material(const YamlField& f, Material& m) {
   if (f.has("model"))
     m.model = f["model"].enumeration<MaterialModel>();
   if (f.has("young")) m.young = f["young"].number();
-  if (!(m.young > 0.0)) f["young"].out_of_range("young > 0 (Pa)");
   if (f.has("poisson")) m.poisson = f["poisson"].number();
-  if (!(m.poisson >= 0.0 && m.poisson < 0.5)) f["poisson"].out_of_range("0 <= poisson < 0.5");
   if (f.has("density")) m.density = f["density"].number();
-  if (!(m.density > 0.0)) f["density"].out_of_range("density > 0 (kg/m^3)");
   if (f.has("damping")) {
     YamlField d = f["damping"];
     d.allow_only({"mass", "stiffness"});
     if (d.has("mass")) m.damping_mass = d["mass"].number();
     if (d.has("stiffness")) m.damping_stiffness = d["stiffness"].number();
-    if (m.damping_mass < 0.0) d["mass"].out_of_range("mass >= 0 (1/s)");
-    if (m.damping_stiffness < 0.0) d["stiffness"].out_of_range("stiffness >= 0 (s)");
   }
 }
 
@@ -122,11 +96,6 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     if (fe.has("element"))
       d.fem.element = fe["element"].enumeration<ElementType>();
     if (fe.has("size")) d.fem.size = fe["size"].number();
-    require_positive(fe["size"], d.fem.size, "size > 0 (m)");
-    bool is_3d_element = d.fem.element == ElementType::tet4 || d.fem.element == ElementType::tet10;
-    if (is_3d_element != (dim == 3))
-      fe["element"].fail("value '" + std::string(to_string(d.fem.element)) + "' does not fit dimension " +
-                         std::to_string(dim) + "; expected " + (dim == 3 ? "tet4 | tet10" : "tri3 | tri6"));
   }
   if (f.has("refine")) {
     YamlField list = f["refine"];
@@ -137,7 +106,6 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
       RefineRegion region;
       region.box = read_box(r["box"], dim);
       region.size = r["size"].number();
-      require_positive(r["size"], region.size, "size > 0 (m)");
       d.refine.push_back(region);
     }
   }
@@ -147,16 +115,13 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     MeshlessOptions& o = d.meshless;
     if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
-    require_positive(m["spacing"], o.spacing, "spacing > 0 (m)");
     if (m.has("support")) o.support = m["support"].number();
-    if (!(o.support > 1.0)) m["support"].out_of_range("support > 1 (a multiple of the spacing)");
     if (m.has("basis")) o.basis = m["basis"].enumeration<MlsBasis>();
     if (m.has("weight")) o.weight = m["weight"].enumeration<WeightFunction>();
     if (m.has("quadrature")) {
       YamlField q = m["quadrature"];
       q.allow_only({"order"});
       if (q.has("order")) o.quadrature_order = q["order"].integer();
-      if (o.quadrature_order < 1 || o.quadrature_order > 8) q["order"].out_of_range("1 <= order <= 8");
     }
     if (m.has("essential"))
       o.essential = m["essential"].enumeration<EssentialMethod>();
@@ -174,7 +139,6 @@ ContactSphere read_contact(const YamlField& f, int dim) {
   s.allow_only({"center", "radius"});
   c.center = s["center"].vector(dim);
   c.radius = s["radius"].number();
-  require_positive(s["radius"], c.radius, "radius > 0 (m)");
   std::string drive = f.exactly_one_of({"force", "displacement"});
   if (drive == "force")
     c.force = f["force"].vector(dim);
@@ -188,22 +152,12 @@ Cut read_cut(const YamlField& f, int dim) {
   cut.where = f.location();
   f.allow_only({"strip", "polyline", "times", "enrichment", "grid", "fem"});
   std::string kind = f.exactly_one_of({"strip", "polyline"});
-  if ((kind == "strip") != (dim == 3))
-    f[kind].fail(std::string("'") + kind + "' does not fit dimension " + std::to_string(dim) +
-                 "; expected " + (dim == 3 ? "strip (3D)" : "polyline (2D)"));
   cut.is_strip = kind == "strip";
   YamlField v = f[kind];
-  std::size_t minimum = cut.is_strip ? 3 : 2;
-  if (!v.is_sequence() || v.size() < minimum)
-    v.fail("expected a list of at least " + std::to_string(minimum) + " vertices, found " + v.value_text());
+  if (!v.is_sequence()) v.fail("expected a list of vertices, found " + v.value_text());
   for (std::size_t i = 0; i < v.size(); ++i) cut.vertices.push_back(v[i].vector(dim));
   if (f.has("times")) {
     cut.times = f["times"].numbers();
-    if (cut.times.size() != cut.vertices.size())
-      f["times"].fail("expected one time per vertex (" + std::to_string(cut.vertices.size()) +
-                      "), found " + std::to_string(cut.times.size()));
-    for (std::size_t i = 1; i < cut.times.size(); ++i)
-      if (cut.times[i] < cut.times[i - 1]) f["times"][i].out_of_range("times that never decrease");
   } else {
     cut.times.assign(cut.vertices.size(), 0.0);
   }
@@ -213,7 +167,6 @@ Cut read_cut(const YamlField& f, int dim) {
     YamlField g = f["grid"];
     g.allow_only({"spacing", "lookup"});
     if (g.has("spacing")) cut.grid_spacing = g["spacing"].number();
-    require_positive(g["spacing"], cut.grid_spacing, "spacing > 0 (m)");
     if (g.has("lookup")) cut.grid_lookup = g["lookup"].enumeration<GridLookup>();
   }
   if (f.has("fem")) cut.fem = f["fem"].enumeration<FemCut>();
@@ -233,66 +186,35 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   if (f.has("integrator"))
     s.integrator = f["integrator"].enumeration<Integrator>();
   if (f.has("dt")) s.dt = f["dt"].number();
-  require_positive(f["dt"], s.dt, "dt > 0 (s)");
   if (f.has("duration")) s.duration = f["duration"].number();
-  require_positive(f["duration"], s.duration, "duration > 0 (s)");
-  if (s.analysis == Analysis::dynamic && s.dt > s.duration)
-    f["dt"].out_of_range("dt <= duration (" + std::to_string(s.duration) + " s)");
   if (f.has("allow_unstable_dt")) s.allow_unstable_dt = f["allow_unstable_dt"].boolean();
   if (f.has("load_steps")) s.load_steps = f["load_steps"].integer();
-  if (s.load_steps < 1) f["load_steps"].out_of_range("load_steps >= 1");
   if (f.has("newton")) {
     YamlField n = f["newton"];
     n.allow_only({"tolerance", "max_iterations", "line_search"});
     if (n.has("tolerance")) s.newton.tolerance = n["tolerance"].number();
-    if (!(s.newton.tolerance > 0.0 && s.newton.tolerance < 1.0))
-      n["tolerance"].out_of_range("0 < tolerance < 1 (relative residual)");
     if (n.has("max_iterations")) s.newton.max_iterations = n["max_iterations"].integer();
-    if (s.newton.max_iterations < 1) n["max_iterations"].out_of_range("max_iterations >= 1");
     if (n.has("line_search")) s.newton.line_search = n["line_search"].boolean();
   }
   if (f.has("linear_solver"))
     s.linear_solver = f["linear_solver"].enumeration<LinearSolverKind>();
   if (f.has("petsc")) s.petsc = f["petsc"].text();
   if (f.has("linear_tolerance")) s.linear_tolerance = f["linear_tolerance"].number();
-  if (!(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0))
-    f["linear_tolerance"].out_of_range("0 < linear_tolerance < 1 (relative residual)");
   if (f.has("mass")) s.mass = f["mass"].enumeration<MassKind>();
   if (f.has("tangent")) s.tangent = f["tangent"].enumeration<TangentKind>();
 }
 
-Probe read_probe(const YamlField& f, int dim, std::size_t contact_count) {
+Probe read_probe(const YamlField& f, int dim) {
   Probe p;
   p.where = f.location();
   f.allow_only({"name", "point", "select", "contact", "field"});
   if (!f.has("name")) f.fail("missing 'name'");
   p.name = f["name"].text();
-  if (p.name.empty() || p.name.find_first_of(",\"\n") != std::string::npos)
-    f["name"].fail("value " + f["name"].value_text() + " is not a usable name; expected text without commas or quotes");
   if (!f.has("field")) f.fail("missing 'field': displacement | reaction | indentation | contact_force | energy");
   p.field = f["field"].enumeration<ProbeField>();
   if (f.has("point")) p.point = f["point"].vector(dim);
   if (f.has("select")) p.select = read_selection(f["select"], dim);
-  if (f.has("contact")) {
-    p.contact = f["contact"].integer();
-    if (*p.contact < 0 || *p.contact >= static_cast<int>(contact_count))
-      f["contact"].out_of_range("the index of an item of 'contact' (0.." +
-                                std::to_string(static_cast<int>(contact_count) - 1) + ")");
-  }
-  switch (p.field) {
-    case ProbeField::displacement:
-      if (!p.point) f.fail("a displacement probe needs 'point: [x, y" + std::string(dim == 3 ? ", z]'" : "]'"));
-      break;
-    case ProbeField::reaction:
-      if (!p.select) f.fail("a reaction probe needs 'select' (the nodes whose reactions are summed)");
-      break;
-    case ProbeField::indentation:
-    case ProbeField::contact_force:
-      if (!p.contact) f.fail("an " + std::string(to_string(p.field)) + " probe needs 'contact: INDEX'");
-      break;
-    case ProbeField::energy:
-      break;
-  }
+  if (f.has("contact")) p.contact = f["contact"].integer();
   return p;
 }
 
@@ -307,35 +229,31 @@ void read_output(const YamlField& f, const Scene& scene, OutputOptions& o) {
       if (!v.boolean()) o.vtk_every = 0;  // true keeps the default
     } else {
       v.allow_only({"every"});
+      // 0 is how the struct says "none"; the file says it with vtk: false.
       if (v.has("every")) o.vtk_every = v["every"].integer();
-      if (o.vtk_every < 1) v["every"].out_of_range("every >= 1 (steps)");
+      if (o.vtk_every < 1) v["every"].out_of_range("every >= 1 (steps); vtk: false for none");
     }
   }
   if (f.has("probes")) {
     YamlField list = f["probes"];
     if (!list.is_sequence()) list.fail("expected a list of probes, found " + list.value_text());
-    for (std::size_t i = 0; i < list.size(); ++i) {
-      o.probes.push_back(read_probe(list[i], scene.dimension, scene.contact.size()));
-      for (std::size_t j = 0; j + 1 < o.probes.size(); ++j)
-        if (o.probes[j].name == o.probes.back().name)
-          list[i]["name"].fail("probe name '" + o.probes.back().name + "' is used twice");
-    }
+    for (std::size_t i = 0; i < list.size(); ++i) o.probes.push_back(read_probe(list[i], scene.dimension));
   }
 }
 
 Scene build_scene(YAML::Node root, const std::string& file, const std::string& directory,
                   const std::vector<std::string>& overrides) {
-  std::set<std::string> overridden = apply_overrides(root, overrides);
-  YamlField top(root, "", &file, &overridden);
+  Scene scene;
+  scene.file = file;
+  const YamlContext context{file, apply_overrides(root, overrides), &scene.sources};
+  YamlField top(root, "", &context);
   if (!root.IsMap()) throw Error(file + ": expected a YAML map of scene keys at the top level");
   top.allow_only({"name", "dimension", "domain", "material", "discretization", "boundary", "body_force",
                   "contact", "cuts", "solve", "output"});
-  Scene scene;
-  scene.file = file;
   if (top.has("name")) scene.name = top["name"].text();
-  if (scene.name.empty() || scene.name.find('/') != std::string::npos)
-    top["name"].fail("value " + top["name"].value_text() + " is not a usable name; expected text without '/'");
   if (top.has("dimension")) scene.dimension = top["dimension"].integer();
+  // Every vector is read with this many components: checked before the
+  // rest is read (validate() checks it again, for scenes built in code).
   if (scene.dimension != 2 && scene.dimension != 3) top["dimension"].out_of_range("2 or 3");
   const int dim = scene.dimension;
 
@@ -344,14 +262,9 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
   domain.allow_only({"box", "mesh"});
   if (domain.exactly_one_of({"box", "mesh"}) == "box") {
     scene.box = read_box(domain["box"], dim);
-    for (int i = 0; i < dim; ++i)
-      if (!(scene.box->max[i] > scene.box->min[i]))
-        domain["box"]["max"].out_of_range("max > min in every component (a box with volume)");
   } else {
     fs::path mesh = domain["mesh"].text();
     if (mesh.is_relative()) mesh = fs::path(directory) / mesh;
-    if (!fs::is_regular_file(mesh))
-      domain["mesh"].fail("file '" + mesh.string() + "' does not exist or is not a file");
     scene.mesh_file = mesh.lexically_normal().string();
   }
 
@@ -380,6 +293,7 @@ Scene build_scene(YAML::Node root, const std::string& file, const std::string& d
   }
   read_solve(top["solve"], scene.discretization.method, scene.solve);
   read_output(top["output"], scene, scene.output);
+  validate(scene);
   return scene;
 }
 

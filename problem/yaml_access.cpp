@@ -43,17 +43,15 @@ std::string SourceLocation::describe() const {
   return out.str();
 }
 
-YamlField::YamlField(YAML::Node node, std::string key, const std::string* file,
-                     const std::set<std::string>* overridden, YAML::Mark parent)
-    : node_(std::move(node)), parent_(parent), key_(std::move(key)), file_(file), overridden_(overridden) {}
+YamlField::YamlField(YAML::Node node, std::string key, const YamlContext* context, YAML::Mark parent)
+    : node_(std::move(node)), parent_(parent), key_(std::move(key)), context_(context) {}
 
 SourceLocation YamlField::location() const {
   SourceLocation where;
-  where.file = file_ ? *file_ : std::string();
+  where.file = context_->file;
   where.key = key_;
-  if (overridden_)
-    for (const auto& prefix : *overridden_)
-      if (key_ == prefix || key_.rfind(prefix + ".", 0) == 0) where.command_line = true;
+  for (const auto& prefix : context_->overridden)
+    if (key_ == prefix || key_.rfind(prefix + ".", 0) == 0) where.command_line = true;
   YAML::Mark mark = node_ ? node_.Mark() : parent_;
   if (mark.line >= 0) {
     where.line = mark.line + 1;
@@ -62,20 +60,27 @@ SourceLocation YamlField::location() const {
   return where;
 }
 
+YamlField YamlField::child(YAML::Node node, const std::string& name) const {
+  YamlField field(std::move(node), join_key(key_, name), context_, present_mark());
+  if (context_->record) {
+    SourceLocation& where = (*context_->record)[field.key_] = field.location();
+    // Scalars as written; lists and maps are described from their values.
+    if (!field.node_ || field.node_.IsNull() || field.node_.IsScalar()) where.text = field.value_text();
+  }
+  return field;
+}
+
 bool YamlField::has(const std::string& child) const {
   if (!node_ || !node_.IsMap()) return false;
   YAML::Node value = node_[child];
   return value && !value.IsNull();
 }
 
-YamlField YamlField::operator[](const std::string& child) const {
-  YAML::Node value = node_ && node_.IsMap() ? node_[child] : YAML::Node();
-  return YamlField(value, join_key(key_, child), file_, overridden_, present_mark());
+YamlField YamlField::operator[](const std::string& name) const {
+  return child(node_ && node_.IsMap() ? node_[name] : YAML::Node(), name);
 }
 
-YamlField YamlField::operator[](std::size_t index) const {
-  return YamlField(node_[index], join_key(key_, std::to_string(index)), file_, overridden_, present_mark());
-}
+YamlField YamlField::operator[](std::size_t index) const { return child(node_[index], std::to_string(index)); }
 
 YAML::Mark YamlField::present_mark() const { return node_ ? node_.Mark() : parent_; }
 
@@ -102,7 +107,7 @@ void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
   for (const auto& entry : node_) {
     std::string name = entry.first.as<std::string>();
     if (std::find(seen.begin(), seen.end(), name) != seen.end())
-      YamlField(entry.first, join_key(key_, name), file_, overridden_)
+      YamlField(entry.first, join_key(key_, name), context_)
           .fail("key '" + name + "' appears twice in the same map; expected each key once");
     seen.push_back(name);
     bool known = std::any_of(allowed.begin(), allowed.end(),
@@ -116,8 +121,8 @@ void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
     }
     std::string list;
     for (const char* a : allowed) list += (list.empty() ? "" : ", ") + std::string(a);
-    YamlField child(entry.first, join_key(key_, name), file_, overridden_, present_mark());
-    child.fail("unknown key '" + name + "'" +
+    YamlField unknown(entry.first, join_key(key_, name), context_, present_mark());
+    unknown.fail("unknown key '" + name + "'" +
                (nearest.empty() ? "" : " (did you mean '" + nearest + "'?)") +
                "; expected one of: " + list);
   }

@@ -14,12 +14,19 @@
 
 namespace kerf {
 
-/// One YAML node together with its dotted key; the root carries the file name.
+/// What every field of one scene file shares: the file's name, the keys set
+/// on the command line, and where to record each key looked at (and its text).
+struct YamlContext {
+  std::string file;
+  std::set<std::string> overridden;
+  KeyLocations* record = nullptr;
+};
+
+/// One YAML node together with its dotted key; the context names the file.
 /// A missing key is a field too: it points at its nearest present parent.
 class YamlField {
  public:
-  YamlField(YAML::Node node, std::string key, const std::string* file,
-            const std::set<std::string>* overridden, YAML::Mark parent = YAML::Mark::null_mark());
+  YamlField(YAML::Node node, std::string key, const YamlContext* context, YAML::Mark parent = YAML::Mark::null_mark());
 
   const YAML::Node& node() const { return node_; }
   const std::string& key() const { return key_; }
@@ -67,8 +74,10 @@ class YamlField {
   YAML::Node node_;
   YAML::Mark parent_;  // where the nearest present ancestor starts
   std::string key_;
-  const std::string* file_;
-  const std::set<std::string>* overridden_;
+  const YamlContext* context_;
+
+  /// The child, recorded in the context's KeyLocations.
+  YamlField child(YAML::Node node, const std::string& name) const;
 };
 
 }  // namespace kerf

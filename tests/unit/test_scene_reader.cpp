@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "problem/scene_json.h"
+#include "problem/scene_validation.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -110,6 +111,34 @@ boundary:
   expect_contains(refusal(yaml, {"material.poisson=0.7"}), "set on the command line");
   expect_contains(refusal(yaml, {"boundary.5.fix=[x]"}), "not an item of an existing list");
   expect_contains(refusal(yaml, {"material.young"}), "expected KEY=VALUE");
+}
+
+// validate() is the one check, whoever built the scene: a Scene built in code
+// gets the reader's refusals, named by key; a default made wrong by another key
+// points at the section the file wrote.
+TEST(SceneValidation, AppliesToScenesBuiltInCode) {
+  Scene scene;
+  scene.box = Box{Vec3::Zero(), Vec3::Ones()};
+  validate(scene);  // the defaults are valid
+  scene.material.poisson = 0.6;
+  std::string m = testing::error_message([&] { validate(scene); });
+  expect_contains(m, "key 'material.poisson': value 0.6 is out of range; expected 0 <= poisson < 0.5");
+  scene.material.poisson = 0.3;
+  scene.output.probes.push_back(Probe{"tip", ProbeField::displacement, std::nullopt, std::nullopt, std::nullopt, {}});
+  expect_contains(testing::error_message([&] { validate(scene); }), "a displacement probe needs 'point");
+  scene.output.probes.back().point = Vec3::Zero();
+  scene.cuts.push_back(Cut{{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()}, true, {0.0, 0.1, 0.2}});
+  scene.contact.push_back(ContactSphere{Vec3(0.5, 0.5, 1.5), 0.5, Vec3(0, 0, -1), std::nullopt, {}});
+  expect_contains(testing::error_message([&] { validate(scene); }), "contact with a growing cut is not built yet");
+  scene.cuts.back().times.assign(3, 0.0);
+  scene.solve.analysis = Analysis::dynamic;
+  scene.contact.back().force = Vec3(0, 1, -1);
+  expect_contains(testing::error_message([&] { validate(scene); }), "key 'contact.0.force': value [0, 1, -1]");
+}
+
+TEST(SceneValidation, ADefaultMadeWrongPointsAtTheSectionWritten) {
+  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {analysis: dynamic, duration: 0.0005}\n");
+  expect_contains(m, "test.yaml:2:8: key 'solve.dt': value 0.001 is out of range; expected dt <= duration");
 }
 
 TEST(SceneReader, ResolvedSceneRoundTripsThroughJson) {

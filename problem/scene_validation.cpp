@@ -1,0 +1,230 @@
+#include "problem/scene_validation.h"
+
+#include <algorithm>
+#include <charconv>
+#include <filesystem>
+#include <sstream>
+
+#include "core/check.h"
+
+namespace kerf {
+namespace {
+
+/// Refusals that name where a key came from and what it holds.
+class Refusal {
+ public:
+  explicit Refusal(const Scene& scene) : scene_(scene) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& problem) const {
+    throw Error(scene_.locate(key).describe() + ": " + problem);
+  }
+  /// "value V is out of range; expected E" unless `ok`.
+  void in_range(bool ok, const std::string& key, double value, const std::string& expected) const {
+    if (!ok) fail(key, "value " + text(key, value) + " is out of range; expected " + expected);
+  }
+  void require(bool ok, const std::string& key, const std::string& problem) const {
+    if (!ok) fail(key, problem);
+  }
+
+ private:
+  /// The value as the file wrote it, else the number (shortest form that reads back).
+  std::string text(const std::string& key, double value) const {
+    const SourceLocation where = scene_.locate(key);
+    if (!where.text.empty() && where.key == key) return where.text;
+    char buffer[32];
+    return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+  }
+
+  const Scene& scene_;
+};
+
+std::string item(const std::string& list, std::size_t i) { return list + "." + std::to_string(i); }
+
+/// "[x, y]" or "[x, y, z]".
+std::string vector_text(const Vec3& v, int dim) {
+  std::ostringstream out;
+  out << "[";
+  for (int a = 0; a < dim; ++a) out << (a ? ", " : "") << v[a];
+  out << "]";
+  return out.str();
+}
+
+/// max >= min in every component, or with `volume` max > min.
+void validate_box(const Refusal& r, const Box& box, int dim, const std::string& key, bool volume = false) {
+  for (int a = 0; a < dim; ++a)
+    r.require(volume ? box.max[a] > box.min[a] : box.max[a] >= box.min[a], key + ".max",
+              "value " + vector_text(box.max, dim) + " is out of range; expected max " + (volume ? ">" : ">=") +
+                  " min " + vector_text(box.min, dim) + " in every component" + (volume ? " (a box with volume)" : ""));
+}
+
+void validate_selection(const Refusal& r, const Selection& s, int dim, const std::string& key) {
+  if (s.kind == Selection::Kind::plane)
+    r.require(s.axis < dim, key + ".plane.axis", "value '" + std::string(1, "xyz"[s.axis]) + "' is out of range; expected x or y in 2D");
+  if (s.kind == Selection::Kind::box) validate_box(r, s.box, dim, key + ".box");
+}
+
+void validate_domain(const Refusal& r, const Scene& s) {
+  r.require(!s.name.empty() && s.name.find('/') == std::string::npos, "name",
+            "value '" + s.name + "' is not a usable name; expected text without '/'");
+  r.in_range(s.dimension == 2 || s.dimension == 3, "dimension", s.dimension, "2 or 3");
+  r.require(s.box.has_value() != !s.mesh_file.empty(), "domain", "expected exactly one of box | mesh");
+  if (s.box) {
+    validate_box(r, *s.box, s.dimension, "domain.box");
+    validate_box(r, *s.box, s.dimension, "domain.box", true);
+  } else {
+    r.require(std::filesystem::is_regular_file(s.mesh_file), "domain.mesh",
+              "file '" + s.mesh_file + "' does not exist or is not a file");
+  }
+}
+
+void validate_material(const Refusal& r, const Material& m) {
+  r.in_range(m.young > 0.0, "material.young", m.young, "young > 0 (Pa)");
+  r.in_range(m.poisson >= 0.0 && m.poisson < 0.5, "material.poisson", m.poisson, "0 <= poisson < 0.5");
+  r.in_range(m.density > 0.0, "material.density", m.density, "density > 0 (kg/m^3)");
+  r.in_range(m.damping_mass >= 0.0, "material.damping.mass", m.damping_mass, "mass >= 0 (1/s)");
+  r.in_range(m.damping_stiffness >= 0.0, "material.damping.stiffness", m.damping_stiffness, "stiffness >= 0 (s)");
+}
+
+void validate_discretization(const Refusal& r, const DiscretizationOptions& d, int dim) {
+  const bool solid = d.fem.element == ElementType::tet4 || d.fem.element == ElementType::tet10;
+  r.require(solid == (dim == 3), "discretization.fem.element",
+            "value '" + std::string(to_string(d.fem.element)) + "' does not fit dimension " + std::to_string(dim) +
+                "; expected " + (dim == 3 ? "tet4 | tet10" : "tri3 | tri6"));
+  r.in_range(d.fem.size > 0.0, "discretization.fem.size", d.fem.size, "size > 0 (m)");
+  for (std::size_t i = 0; i < d.refine.size(); ++i) {
+    validate_box(r, d.refine[i].box, dim, item("discretization.refine", i) + ".box");
+    r.in_range(d.refine[i].size > 0.0, item("discretization.refine", i) + ".size", d.refine[i].size, "size > 0 (m)");
+  }
+  const MeshlessOptions& m = d.meshless;
+  r.in_range(m.spacing > 0.0, "discretization.meshless.spacing", m.spacing, "spacing > 0 (m)");
+  r.in_range(m.support > 1.0, "discretization.meshless.support", m.support, "support > 1 (a multiple of the spacing)");
+  r.in_range(m.quadrature_order >= 1 && m.quadrature_order <= 8, "discretization.meshless.quadrature.order",
+             m.quadrature_order, "1 <= order <= 8");
+}
+
+void validate_boundary(const Refusal& r, const Scene& s) {
+  for (std::size_t i = 0; i < s.boundary.size(); ++i) {
+    const BoundaryCondition& bc = s.boundary[i];
+    const std::string key = item("boundary", i);
+    validate_selection(r, bc.select, s.dimension, key + ".select");
+    const bool dirichlet = bc.is_dirichlet(), neumann = bc.traction || bc.pressure;
+    r.require(dirichlet || neumann, key, "expected at least one of fix | displacement | traction | pressure");
+    r.require(!(dirichlet && neumann), key,
+              "an item either prescribes displacements (fix, displacement) or loads (traction, pressure), not both; "
+              "use two items");
+    for (int a = 0; a < 3; ++a)
+      r.require(!(bc.fixed[a] && bc.displacement[a]), key + ".displacement",
+                "component " + std::string(1, "xyz"[a]) + " is both fixed and prescribed");
+    r.require(!neumann || bc.select.kind != Selection::Kind::point, key + ".select",
+              "a point selection holds a node, not boundary faces; traction and pressure need a plane or box selection");
+  }
+}
+
+void validate_contact(const Refusal& r, const Scene& s) {
+  const bool static_run = s.solve.analysis == Analysis::static_analysis;
+  for (std::size_t i = 0; i < s.contact.size(); ++i) {
+    const ContactSphere& c = s.contact[i];
+    const std::string key = item("contact", i);
+    r.in_range(c.radius > 0.0, key + ".sphere.radius", c.radius, "radius > 0 (m)");
+    r.require(c.force.has_value() != c.displacement.has_value(), key, "expected exactly one of force | displacement");
+    if (!c.force) continue;
+    const std::string force = "value " + vector_text(*c.force, s.dimension);
+    r.require(c.force->norm() > 0.0, key + ".force",
+              force + ": a zero force gives the sphere no direction; expected a nonzero force (N)");
+    // Dynamic runs move a force-driven sphere along one axis (the others held).
+    const bool along_axis = (c.force->normalized().array().abs() > 1.0 - 1e-12).any();
+    r.require(static_run || along_axis, key + ".force",
+              force + ": a dynamic run moves a force-driven sphere along one axis; expected a force along x, y "
+                            "or z (or a static run, or a prescribed displacement)");
+  }
+}
+
+void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::string& key) {
+  const int dim = s.dimension;
+  const char* kind = cut.is_strip ? "strip" : "polyline";
+  r.require(cut.is_strip == (dim == 3), key + "." + kind,
+            std::string("'") + kind + "' does not fit dimension " + std::to_string(dim) + "; expected " +
+                (dim == 3 ? "strip (3D)" : "polyline (2D)"));
+  const std::size_t minimum = cut.is_strip ? 3 : 2;
+  r.require(cut.vertices.size() >= minimum, key + "." + kind,
+            "expected a list of at least " + std::to_string(minimum) + " vertices, found " +
+                std::to_string(cut.vertices.size()));
+  r.require(cut.times.size() == cut.vertices.size(), key + ".times",
+            "expected one time per vertex (" + std::to_string(cut.vertices.size()) + "), found " +
+                std::to_string(cut.times.size()));
+  for (std::size_t i = 1; i < cut.times.size(); ++i)
+    r.in_range(cut.times[i] >= cut.times[i - 1], item(key + ".times", i), cut.times[i], "times that never decrease");
+  r.in_range(cut.grid_spacing > 0.0, key + ".grid.spacing", cut.grid_spacing, "spacing > 0 (m)");
+  // What is not built yet.
+  const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
+  r.require(s.contact.empty() || !grows, key + ".times",
+            "contact with a growing cut is not built yet (the contact points' shape functions would go stale as the "
+            "cut grows); expected every vertex at t = 0, or no contact");
+  r.require(s.discretization.method != Method::fem || cut.fem != FemCut::remesh || s.box, key + ".fem",
+            "value remesh: FEM remeshes around a cut only in a box domain (domain.mesh is read as it is); expected "
+            "fem: remove, or domain.box");
+  for (std::size_t i = 0; i < cut.times.size(); ++i)
+    r.require(cut.times[i] <= 0.0 || s.discretization.method != Method::efg, item(key + ".times", i),
+              "value " + std::to_string(cut.times[i]) + " at vertex " + std::to_string(i) +
+                  ": a growing cut in efg (the Gauss points, loads and weak constraints updated) is not built yet; "
+                  "expected discretization.method nodal or fem, or every vertex present at t = 0");
+}
+
+void validate_solve(const Refusal& r, const SolveOptions& s) {
+  r.in_range(s.dt > 0.0, "solve.dt", s.dt, "dt > 0 (s)");
+  r.in_range(s.duration > 0.0, "solve.duration", s.duration, "duration > 0 (s)");
+  r.in_range(s.analysis != Analysis::dynamic || s.dt <= s.duration, "solve.dt", s.dt,
+             "dt <= duration (" + std::to_string(s.duration) + " s)");
+  r.in_range(s.load_steps >= 1, "solve.load_steps", s.load_steps, "load_steps >= 1");
+  r.in_range(s.newton.tolerance > 0.0 && s.newton.tolerance < 1.0, "solve.newton.tolerance", s.newton.tolerance,
+             "0 < tolerance < 1 (relative residual)");
+  r.in_range(s.newton.max_iterations >= 1, "solve.newton.max_iterations", s.newton.max_iterations,
+             "max_iterations >= 1");
+  r.in_range(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0, "solve.linear_tolerance", s.linear_tolerance,
+             "0 < linear_tolerance < 1 (relative residual)");
+}
+
+void validate_probe(const Refusal& r, const Scene& s, std::size_t i) {
+  const Probe& p = s.output.probes[i];
+  const std::string key = item("output.probes", i);
+  r.require(!p.name.empty() && p.name.find_first_of(",\"\n") == std::string::npos, key + ".name",
+            "value '" + p.name + "' is not a usable name; expected text without commas or quotes");
+  for (std::size_t j = 0; j < i; ++j)
+    r.require(s.output.probes[j].name != p.name, key + ".name", "probe name '" + p.name + "' is used twice");
+  if (p.select) validate_selection(r, *p.select, s.dimension, key + ".select");
+  if (p.contact)
+    r.in_range(*p.contact >= 0 && *p.contact < static_cast<int>(s.contact.size()), key + ".contact", *p.contact,
+               "the index of an item of 'contact' (0.." + std::to_string(static_cast<int>(s.contact.size()) - 1) + ")");
+  switch (p.field) {
+    case ProbeField::displacement:
+      r.require(p.point.has_value(), key,
+                "a displacement probe needs 'point: [x, y" + std::string(s.dimension == 3 ? ", z]'" : "]'"));
+      break;
+    case ProbeField::reaction:
+      r.require(p.select.has_value(), key, "a reaction probe needs 'select' (the nodes whose reactions are summed)");
+      break;
+    case ProbeField::indentation:
+    case ProbeField::contact_force:
+      r.require(p.contact.has_value(), key, "an " + std::string(to_string(p.field)) + " probe needs 'contact: INDEX'");
+      break;
+    case ProbeField::energy:
+      break;
+  }
+}
+
+}  // namespace
+
+void validate(const Scene& scene) {
+  const Refusal r(scene);
+  validate_domain(r, scene);
+  validate_material(r, scene.material);
+  validate_discretization(r, scene.discretization, scene.dimension);
+  validate_boundary(r, scene);
+  validate_contact(r, scene);
+  for (std::size_t i = 0; i < scene.cuts.size(); ++i) validate_cut(r, scene, scene.cuts[i], item("cuts", i));
+  validate_solve(r, scene.solve);
+  r.in_range(scene.output.vtk_every >= 0, "output.vtk.every", scene.output.vtk_every, "every >= 0 (steps; 0: none)");
+  for (std::size_t i = 0; i < scene.output.probes.size(); ++i) validate_probe(r, scene, i);
+}
+
+}  // namespace kerf
