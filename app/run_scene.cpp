@@ -13,7 +13,6 @@
 #include "core/run_report.h"
 #include "discretization/body_factory.h"
 #include "discretization/fem/state_transfer.h"
-#include "geometry/cut_surface.h"
 #include "kerf/version.h"
 #include "output/atomic_file.h"
 #include "output/probe_table.h"
@@ -31,19 +30,12 @@ std::atomic<bool> interrupted{false};
 
 }  // namespace
 
-void refuse_unrunnable(const Scene& scene) {
+SharedCuts refuse_unrunnable(const Scene& scene) {
   validate(scene);
-  for (const Cut& cut : scene.cuts) cut_surface(scene.dimension, cut.vertices, cut.times, cut.where.describe());
+  return std::make_shared<const CutTimeline>(scene);
 }
 
 namespace {
-
-/// Pieces of all the scene's cuts present at time t.
-Index pieces_at(const std::vector<CutSurface>& cuts, double t) {
-  Index count = 0;
-  for (const CutSurface& c : cuts) count += c.pieces_at(t);
-  return count;
-}
 
 /// What a run holds on its body: body and stepper replaced when FEM meshes
 /// again, probes resolved again after any cut growth.
@@ -59,10 +51,11 @@ struct RunParts {
 /// the probes again after any growth). Timed like a
 /// meshless update: cut_update_ms (mesh, body, state transfer) and
 /// cut_refresh_ms (the new stepper reading mass and forces).
-void remesh_for_cuts(const Scene& scene, RunParts& run, SolverState& state, RunReport& report) {
+void remesh_for_cuts(const Scene& scene, const SharedCuts& cuts, RunParts& run, SolverState& state,
+                     RunReport& report) {
   const double start = now_seconds();
   RunReport remesh_report;  // its setup phase is the cut update's, not the run's
-  std::unique_ptr<DiscreteBody> body = make_body(scene, remesh_report, state.t);
+  std::unique_ptr<DiscreteBody> body = make_body(scene, cuts, remesh_report, state.t);
   const StateTransfer transfer(dynamic_cast<const FemBody&>(*run.body), dynamic_cast<const FemBody&>(*body));
   state.u = transfer(state.u);
   state.v = transfer(state.v);
@@ -99,7 +92,7 @@ void advance_cuts(DiscreteBody& body, Stepper& stepper, SolverState& state, RunR
 }  // namespace
 
 RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
-  refuse_unrunnable(scene);
+  const SharedCuts cuts = refuse_unrunnable(scene);
   RunOutcome outcome;
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   std::filesystem::create_directories(outcome.directory);
@@ -116,7 +109,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   interrupted = false;
   try {
     RunParts run;
-    run.body = make_body(scene, report);
+    run.body = make_body(scene, cuts, report);
     run.probes = std::make_unique<ProbeSet>(scene, *run.body);
     run.stepper = make_stepper(*run.body, scene, report);
     SolverState state;
@@ -124,11 +117,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
                      run.body->mean_neighbors()};
     // FEM follows a growing cut by meshing again when pieces appear.
-    std::vector<CutSurface> fem_cuts;
-    if (scene.discretization.method == Method::fem)
-      for (const Cut& c : scene.cuts)
-        fem_cuts.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
-    Index fem_pieces = pieces_at(fem_cuts, 0.0);
+    Index fem_pieces = scene.discretization.method == Method::fem ? cuts->pieces_at(0.0) : 0;
     report.setup_seconds = now_seconds() - start;
 
     const int every = scene.output.vtk_every;
@@ -185,8 +174,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
         load_before.swap(load_after);
       }
       const std::size_t growths = report.cut_update_seconds.size();
-      if (const Index now = pieces_at(fem_cuts, state.t); now != fem_pieces) {
-        remesh_for_cuts(scene, run, state, report);
+      if (const Index now = cuts->pieces_at(state.t); scene.discretization.method == Method::fem && now != fem_pieces) {
+        remesh_for_cuts(scene, cuts, run, state, report);
         fem_pieces = now;
       } else {
         advance_cuts(*run.body, *run.stepper, state, report);

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "core/run_report.h"
+#include "discretization/cut_timeline.h"
 #include "problem/scene.h"
 
 namespace kerf {
@@ -19,9 +20,10 @@ struct RunOutcome {
   RunReport report;                // the same figures, typed
 };
 
-/// Refuses, before any work, what the scene asks for that cannot run: checks
-/// the cuts' geometry (degenerate or folding cuts) and names what is not built.
-void refuse_unrunnable(const Scene& scene);
+/// Refuses, before any work, what the scene asks for that cannot run
+/// (validate(), then the cuts' geometry: degenerate or folding cuts); returns
+/// the cut timeline the run shares.
+SharedCuts refuse_unrunnable(const Scene& scene);
 
 /// Writes summary.json (status "ok"), probes.csv and the ParaView series.
 /// On failure, writes summary.json with status "error" and the message, keeps

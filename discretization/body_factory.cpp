@@ -36,7 +36,7 @@ int fem_order(const Scene& scene) {
   return e == ElementType::tet10 || e == ElementType::tri6 ? 2 : 1;
 }
 
-std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& report) {
+std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
   const MeshlessOptions& options = scene.discretization.meshless;
   const bool on_mesh_nodes = options.nodes == NodePlacement::mesh || !scene.box;
   const bool boundary_loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
@@ -58,23 +58,18 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, RunReport& 
                                 : lattice_nodes(scene.dimension, *scene.box, options.spacing,
                                                 scene.discretization.refine, options.support);
   report.add_stage("nodes");
-  MeshlessDomain domain(scene, std::move(nodes), scene.box, std::move(background));
+  MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
   report.add_stage("shape functions");
   if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain));
   return std::make_unique<EfgBody>(scene, std::move(domain));
 }
 
 /// The body without its contact: fem, efg or nodal.
-std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, RunReport& report, double time) {
-  if (scene.discretization.method != Method::fem) return make_meshless_body(scene, report);
+std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
+  if (scene.discretization.method != Method::fem) return make_meshless_body(scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
-  std::vector<CutPiece> remeshed, removed;
-  for (const Cut& c : scene.cuts) {
-    const CutSurface cut = cut_surface(scene.dimension, c.vertices, c.times, c.where.describe());
-    std::vector<CutPiece>& pieces = c.fem == FemCut::remesh ? remeshed : removed;
-    pieces.insert(pieces.end(), cut.pieces.begin(), cut.pieces.begin() + cut.pieces_at(time));
-  }
-  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, std::move(remeshed));
+  const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
+  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, cuts->fem_pieces(FemCut::remesh, time));
   report.add_stage("mesh");
   if (!removed.empty()) {
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
@@ -85,9 +80,13 @@ std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, RunReport& r
 
 }  // namespace
 
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time) {
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
+  return make_body(scene, std::make_shared<const CutTimeline>(scene), report, 0.0);
+}
+
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
   ScopedTimer timer(report.phases, Phase::setup);
-  std::unique_ptr<DiscreteBody> body = make_elastic_body(scene, report, time);
+  std::unique_ptr<DiscreteBody> body = make_elastic_body(scene, std::move(cuts), report, time);
   if (scene.contact.empty()) return body;
   report.add_stage("contact");
   return std::make_unique<ContactBody>(scene, std::move(body));

@@ -4,13 +4,17 @@
 #include <memory>
 
 #include "core/run_report.h"
+#include "discretization/cut_timeline.h"
 #include "discretization/discrete_body.h"
 
 namespace kerf {
 
 /// FEM takes the cuts' pieces present at `time` (s): those meshed in
-/// (`fem: remesh`) or whose cells are removed (`fem: remove`). With contact
-/// the body comes wrapped in a ContactBody (one more node per sphere).
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report, double time = 0.0);
+/// (`fem: remesh`) or whose cells are removed (`fem: remove`); the meshless
+/// methods enrich their weights with the cuts as they grow. With contact the
+/// body comes wrapped in a ContactBody (one more node per sphere).
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time = 0.0);
+/// The same, building the scene's cut timeline on the way (tests, studies).
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report);
 
 }  // namespace kerf

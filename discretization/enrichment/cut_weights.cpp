@@ -11,12 +11,14 @@
 
 namespace kerf {
 
-CutWeights::CutWeights(std::span<const Cut> cuts, std::vector<CutSurface> surfaces, std::span<const Vec3> nodes,
-                       std::span<const double> support, const PointIndex& index, double time)
-    : nodes_(nodes.begin(), nodes.end()), support_(support.begin(), support.end()), index_(index) {
-  KERF_CHECK(cuts.size() == surfaces.size(), "one surface per cut expected");
+CutWeights::CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support,
+                       const PointIndex& index, double time)
+    : cuts_(std::move(cuts)),
+      parts_(cuts_->cut_count()),
+      nodes_(nodes.begin(), nodes.end()),
+      support_(support.begin(), support.end()),
+      index_(index) {
   if (!support.empty()) largest_support_ = *std::max_element(support.begin(), support.end());
-  for (std::size_t c = 0; c < cuts.size(); ++c) parts_.push_back(Part{cuts[c], std::move(surfaces[c]), 0, nullptr});
   advance_to(time);
 }
 
@@ -54,39 +56,42 @@ std::vector<Index> CutWeights::reached_by(const CutSurface& surface, Index first
   return out;
 }
 
-std::unique_ptr<EnrichmentRule> CutWeights::make_rule(const Part& part, std::span<const Index> reached) const {
-  const CutSurface& s = part.surface;
-  switch (part.cut.enrichment) {
+std::unique_ptr<EnrichmentRule> CutWeights::make_rule(Index cut, std::span<const Index> reached) const {
+  const CutSurface& s = cuts_->surface(cut);
+  const Cut& how = cuts_->settings(cut);
+  const Index pieces = parts_[cut].pieces;
+  switch (how.enrichment) {
     case Enrichment::grid:
-      return std::make_unique<GridRule>(s, part.pieces, part.cut.grid_spacing, part.cut.grid_lookup, nodes_, support_,
-                                        reached);
+      return std::make_unique<GridRule>(s, pieces, how.grid_spacing, how.grid_lookup, nodes_, support_, reached);
     case Enrichment::single:
-      return std::make_unique<SinglePieceRule>(s, part.pieces, nodes_, support_);
+      return std::make_unique<SinglePieceRule>(s, pieces, nodes_, support_);
     case Enrichment::multiplicative:
-      return std::make_unique<MultiplicativeRule>(s, part.pieces, nodes_, support_);
+      return std::make_unique<MultiplicativeRule>(s, pieces, nodes_, support_);
     case Enrichment::visibility:
-      return std::make_unique<VisibilityRule>(s, part.pieces, nodes_, support_);
+      return std::make_unique<VisibilityRule>(s, pieces, nodes_, support_);
     case Enrichment::diffraction:
-      return std::make_unique<DiffractionRule>(s, part.pieces, nodes_, support_);
+      return std::make_unique<DiffractionRule>(s, pieces, nodes_, support_);
   }
   return nullptr;
 }
 
 std::vector<Index> CutWeights::advance_to(double t) {
   std::vector<Index> changed;
-  for (Part& part : parts_) {
-    const Index now = part.surface.pieces_at(t);
+  for (Index c = 0; c < cut_count(); ++c) {
+    Part& part = parts_[c];
+    const CutSurface& surface = cuts_->surface(c);
+    const Index now = surface.pieces_at(t);
     if (now <= part.pieces) continue;
     const Index before = part.pieces;
     part.pieces = now;
-    const std::vector<Index> reached = reached_by(part.surface, before, now);
+    const std::vector<Index> reached = reached_by(surface, before, now);
     if (auto* grid = dynamic_cast<GridRule*>(part.rule.get())) {
       grid->grow(now, reached, changed);
       continue;
     }
     // First pieces, or a baseline rule: rebuilt whole. A new piece changes
     // only the factors of the nodes it reaches (their view of the cut).
-    part.rule = make_rule(part, reached);
+    part.rule = make_rule(c, reached);
     changed.insert(changed.end(), reached.begin(), reached.end());
   }
   std::sort(changed.begin(), changed.end());

@@ -5,9 +5,9 @@
 #include <span>
 #include <vector>
 
+#include "discretization/cut_timeline.h"
 #include "discretization/enrichment/enrichment_rule.h"
 #include "geometry/neighbor_search.h"
-#include "problem/scene.h"
 
 namespace kerf {
 
@@ -20,10 +20,10 @@ class EnrichmentGrid;
 /// other rules (baselines) are rebuilt and report the nodes the new pieces reach.
 class CutWeights final : public EnrichmentRule {
  public:
-  /// `cuts` and `surfaces` are parallel (the surfaces are kept here); nodes and support radii in metres;
-  /// `index` is a k-d tree over the nodes and must outlive this object.
-  CutWeights(std::span<const Cut> cuts, std::vector<CutSurface> surfaces, std::span<const Vec3> nodes,
-             std::span<const double> support, const PointIndex& index, double time);
+  /// The scene's cuts (kept); nodes and support radii in metres; `index` is a
+  /// k-d tree over the nodes and must outlive this object.
+  CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support, const PointIndex& index,
+             double time);
   ~CutWeights() override;
 
   /// Is any piece of any cut present?
@@ -40,20 +40,19 @@ class CutWeights final : public EnrichmentRule {
   /// Pieces of cut c present now.
   Index pieces(Index cut) const { return parts_[cut].pieces; }
   Index cut_count() const { return static_cast<Index>(parts_.size()); }
-  const CutSurface& surface(Index cut) const { return parts_[cut].surface; }
+  const CutSurface& surface(Index cut) const { return cuts_->surface(cut); }
 
  private:
   struct Part {
-    Cut cut;
-    CutSurface surface;
-    Index pieces = 0;
+    Index pieces = 0;  // present now
     std::unique_ptr<EnrichmentRule> rule;
   };
   /// The nodes whose support reaches pieces [first, last) of a surface, sorted.
   std::vector<Index> reached_by(const CutSurface& surface, Index first, Index last) const;
-  std::unique_ptr<EnrichmentRule> make_rule(const Part& part, std::span<const Index> reached) const;
+  std::unique_ptr<EnrichmentRule> make_rule(Index cut, std::span<const Index> reached) const;
 
-  std::vector<Part> parts_;
+  SharedCuts cuts_;
+  std::vector<Part> parts_;  // one per cut
   std::vector<Vec3> nodes_;
   std::vector<double> support_;
   double largest_support_ = 0.0;

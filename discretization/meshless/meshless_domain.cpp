@@ -25,7 +25,7 @@ std::string support_context(const Scene& scene) {
 
 }  // namespace
 
-MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<Box> box,
+MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet nodes, std::optional<Box> box,
                                std::optional<Mesh> background)
     : nodes_(std::move(nodes)),
       box_(std::move(box)),
@@ -44,12 +44,9 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<
     background_on_boundary_ = boundary_node_flags(*background_, facets_);
   }
   index_ = std::make_unique<PointIndex>(nodes_.positions);
-  std::vector<CutSurface> cuts;
-  for (const Cut& c : scene.cuts) cuts.push_back(cut_surface(dimension(), c.vertices, c.times, c.where.describe()));
-  const bool growing = std::any_of(cuts.begin(), cuts.end(), [](const CutSurface& c) { return c.appears.back() > 0.0; });
-  if (!cuts.empty())
-    enrichment_ =
-        std::make_unique<CutWeights>(scene.cuts, std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
+  const bool growing = cuts->grows();
+  if (cuts->cut_count() > 0)
+    enrichment_ = std::make_unique<CutWeights>(std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
   if (growing && background_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)

@@ -43,7 +43,8 @@ class MeshlessDomain {
  public:
   /// `box`: the domain when it is a box; `background`: a simplex mesh covering
   /// the domain (needed for EFG cells, boundary loads and non-box domains).
-  MeshlessDomain(const Scene& scene, NodeSet nodes, std::optional<Box> box, std::optional<Mesh> background);
+  MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet nodes, std::optional<Box> box,
+                 std::optional<Mesh> background);
   ~MeshlessDomain();
   MeshlessDomain(MeshlessDomain&&) noexcept;
 
