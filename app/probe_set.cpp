@@ -1,10 +1,13 @@
 #include "app/probe_set.h"
 
 #include "core/check.h"
+#include "discretization/body_capabilities.h"
 
 namespace kerf {
 
-ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : body_(body), dim_(body.dofs_per_node()) {
+ProbeSet::ProbeSet(const Scene& scene, const MechanicalSystem& mechanics)
+    : mechanics_(mechanics), weak_(capability<WeakConstraints>(mechanics.body())), dim_(mechanics.dofs_per_node()) {
+  const DiscreteBody& body = mechanics.body();
   for (const Probe& p : scene.output.probes) {
     Resolved r{p, {}, {}};
     switch (p.field) {
@@ -20,8 +23,8 @@ ProbeSet::ProbeSet(const Scene& scene, const DiscreteBody& body) : body_(body), 
         break;
       case ProbeField::indentation:
       case ProbeField::contact_force:
-        KERF_CHECK(body.contact_reading(*p.contact, Vector::Zero(body.dof_count())), p.where.describe(),
-                   ": probe '", p.name, "': contact ", *p.contact, " is not in the body");
+        KERF_CHECK(mechanics.contact() && *p.contact < mechanics.contact()->sphere_count(), p.where.describe(),
+                   ": probe '", p.name, "': contact ", *p.contact, " is not in the scene");
         break;
       case ProbeField::energy:
         break;
@@ -82,15 +85,17 @@ std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState&
     {
       for (Index n : r.nodes)
         for (int i = 0; i < dim_; ++i) v[i] += reaction[dim_ * n + i];
-      const Vec3 weak = body_.weak_reaction(state.u, *r.probe.select);
-      for (int i = 0; i < dim_; ++i) v[i] += weak[i];
+      if (weak_) {
+        const Vec3 weak = weak_->weak_reaction(mechanics_.body_part(state.u), *r.probe.select);
+        for (int i = 0; i < dim_; ++i) v[i] += weak[i];
+      }
       break;
     }
     case ProbeField::indentation:
-      v = {body_.contact_reading(*r.probe.contact, state.u)->indentation};
+      v = {mechanics_.contact()->reading(*r.probe.contact, state.u).indentation};
       break;
     case ProbeField::contact_force: {
-      const Vec3 force = body_.contact_reading(*r.probe.contact, state.u)->force;
+      const Vec3 force = mechanics_.contact()->reading(*r.probe.contact, state.u).force;
       v.assign(force.data(), force.data() + dim_);
       break;
     }

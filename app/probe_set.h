@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "discretization/discrete_body.h"
+#include "solvers/mechanical_system.h"
 #include "solvers/stepper.h"
 
 namespace kerf {
@@ -21,7 +21,7 @@ struct EnergyState {
 class ProbeSet {
  public:
   /// Throws, naming the probe's scene line, when a point lies outside the body.
-  ProbeSet(const Scene& scene, const DiscreteBody& body);
+  ProbeSet(const Scene& scene, const MechanicalSystem& mechanics);
 
   std::vector<std::string> columns() const;  // without the leading "time"
   bool needs_reaction() const;
@@ -38,7 +38,8 @@ class ProbeSet {
   };
   std::vector<double> probe_values(const Resolved& r, const SolverState& state, const Vector& reaction,
                                    const EnergyState& energy) const;
-  const DiscreteBody& body_;
+  const MechanicalSystem& mechanics_;
+  const WeakConstraints* weak_;  // the body's, or null
   std::vector<Resolved> probes_;
   int dim_;
 };

@@ -3,7 +3,6 @@
 #include <algorithm>
 
 #include "core/check.h"
-#include "discretization/contact_body.h"
 #include "discretization/fem/fem_body.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
@@ -64,8 +63,14 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts 
   return std::make_unique<EfgBody>(scene, std::move(domain));
 }
 
-/// The body without its contact: fem, efg or nodal.
-std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
+}  // namespace
+
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
+  return make_body(scene, std::make_shared<const CutTimeline>(scene), report, 0.0);
+}
+
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
+  ScopedTimer timer(report.phases, Phase::setup);
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
@@ -76,20 +81,6 @@ std::unique_ptr<DiscreteBody> make_elastic_body(const Scene& scene, SharedCuts c
     report.add_stage("cut cells removed");
   }
   return std::make_unique<FemBody>(scene, std::move(mesh));
-}
-
-}  // namespace
-
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
-  return make_body(scene, std::make_shared<const CutTimeline>(scene), report, 0.0);
-}
-
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
-  ScopedTimer timer(report.phases, Phase::setup);
-  std::unique_ptr<DiscreteBody> body = make_elastic_body(scene, std::move(cuts), report, time);
-  if (scene.contact.empty()) return body;
-  report.add_stage("contact");
-  return std::make_unique<ContactBody>(scene, std::move(body));
 }
 
 }  // namespace kerf

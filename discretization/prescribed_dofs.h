@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "discretization/discrete_body.h"
+#include "problem/scene.h"
 
 namespace kerf {
 

@@ -2,12 +2,6 @@
 
 namespace kerf {
 
-bool Box::contains(const Vec3& p, double tolerance) const {
-  for (int i = 0; i < 3; ++i)
-    if (p[i] < min[i] - tolerance || p[i] > max[i] + tolerance) return false;
-  return true;
-}
-
 SourceLocation Scene::locate(const std::string& key) const {
   if (auto found = sources.find(key); found != sources.end()) return found->second;
   // A key the file left out (a default): the nearest ancestor it wrote.

@@ -8,23 +8,10 @@
 #include <vector>
 
 #include "core/types.h"
+#include "problem/selection.h"
+#include "problem/source_location.h"
 
 namespace kerf {
-
-/// Where a value came from, for error messages: "scene.yaml:12:5 (material.poisson)".
-struct SourceLocation {
-  std::string file;
-  int line = 0;    // 1-based; 0 = unknown (built in code); a missing key points at its parent
-  int column = 0;  // 1-based
-  std::string key; // dotted path, e.g. "boundary.1.traction"
-  bool command_line = false;  // the value came from --set
-  std::string text;           // the value as written ("'0.5'", "nothing (the key is missing)"); "" in code
-  std::string describe() const;
-};
-
-/// Every key a scene file's reader looked at, by dotted path: the validation
-/// names them in its messages. Empty for a scene built in code.
-using KeyLocations = std::map<std::string, SourceLocation>;
 
 enum class MaterialModel { linear, corotational, stvk, neohookean };
 enum class Method { fem, efg, nodal };
@@ -43,22 +30,6 @@ enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
 enum class GridLookup { exact, interpolated };
 enum class FemCut { remesh, remove };
 enum class ProbeField { displacement, reaction, indentation, contact_force, energy };
-
-struct Box {
-  Vec3 min = Vec3::Zero();
-  Vec3 max = Vec3::Zero();
-  bool contains(const Vec3& p, double tolerance) const;
-};
-
-struct Selection {
-  enum class Kind { plane, box, point };
-  Kind kind = Kind::plane;
-  int axis = 0;            // plane: 0, 1, 2 for x, y, z
-  double at = 0.0;         // plane: coordinate (m)
-  Box box;                 // box
-  Vec3 point = Vec3::Zero();  // point: the nearest node is taken
-  SourceLocation where;
-};
 
 struct BoundaryCondition {
   Selection select;

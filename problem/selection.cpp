@@ -8,6 +8,12 @@
 
 namespace kerf {
 
+bool Box::contains(const Vec3& p, double tolerance) const {
+  for (int i = 0; i < 3; ++i)
+    if (p[i] < min[i] - tolerance || p[i] > max[i] + tolerance) return false;
+  return true;
+}
+
 std::vector<Index> select_points(const Selection& s, std::span<const Vec3> points,
                                  std::span<const char> on_boundary, double domain_size) {
   const double tolerance = 1e-9 * domain_size;

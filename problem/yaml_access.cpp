@@ -30,19 +30,6 @@ std::string join_key(const std::string& parent, const std::string& child) {
 
 }  // namespace
 
-std::string SourceLocation::describe() const {
-  std::ostringstream out;
-  if (command_line)
-    out << file << ": key '" << key << "' (set on the command line)";
-  else if (line > 0)
-    out << file << ":" << line << ":" << column << ": key '" << key << "'";
-  else if (!file.empty())
-    out << file << ": key '" << key << "'";
-  else
-    out << "key '" << key << "'";
-  return out.str();
-}
-
 YamlField::YamlField(YAML::Node node, std::string key, const YamlContext* context, YAML::Mark parent)
     : node_(std::move(node)), parent_(parent), key_(std::move(key)), context_(context) {}
 

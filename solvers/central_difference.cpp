@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "discretization/body_capabilities.h"
 #include "solvers/largest_eigenvalue.h"
 #include "solvers/sparse_assembly.h"
 
@@ -19,30 +20,19 @@ namespace {
 
 class CentralDifferenceStepper final : public Stepper {
  public:
-  CentralDifferenceStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
-      : body_(body), report_(report), options_(scene.solve), alpha_(scene.material.damping_mass),
-        beta_(scene.material.damping_stiffness), constrained_(body.dirichlet(0.0)) {
+  CentralDifferenceStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
+      : mechanics_(mechanics), report_(report), options_(scene.solve), alpha_(scene.material.damping_mass),
+        beta_(scene.material.damping_stiffness), constrained_(mechanics.dirichlet(0.0)) {
     ScopedTimer timer(report.phases, Phase::setup);
     report.add_stage("mass");
-    mass_ = body_.lumped_mass();
+    mass_ = mechanics_.lumped_mass();
     KERF_CHECK((mass_.array() > 0.0).all(), "the lumped mass has a zero or negative entry: central differences need a "
                "positive diagonal mass");
     inverse_mass_ = mass_.cwiseInverse();
-    // The element bound (FEM) is safe but often twice too small; Lanczos on
-    // the assembled stiffness at rest finds omega_max itself (an upper bound on it).
-    const std::optional<double> element_bound_step = body_.critical_time_step();
-    report.add_stage("stiffness");
-    SparseMatrix K = build_pattern(body_);
-    body_.tangent(Vector::Zero(body_.dof_count()), add_into(K), nullptr);
-    EigenvalueBound omega2 = largest_eigenvalue(K, mass_, FreeDofs(body_.dof_count(), constrained_));
-    const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
-    critical_step_ = damped_critical_step(std::max(lanczos_step, element_bound_step.value_or(0.0)), beta_);
-    report.solver.critical_dt_s = critical_step_;
-    if (element_bound_step)
-      report.solver.critical_dt_element_bound_s = damped_critical_step(*element_bound_step, beta_);
+    critical_step_ = estimate_critical_step();
     if (options_.dt > critical_step_ && !options_.allow_unstable_dt) {
       std::ostringstream why;
-      why << scene.file << ": key 'solve.dt': value " << options_.dt
+      why << scene.locate("solve.dt").describe() << ": value " << options_.dt
           << " s is above the critical time step of central differences for this discretization and material, "
           << critical_step_ << " s (2 / omega_max by Lanczos" << (beta_ > 0 ? ", with stiffness damping" : "")
           << "); expected dt <= " << critical_step_ << " s, or an implicit integrator (or solve.allow_unstable_dt: true to "
@@ -52,12 +42,12 @@ class CentralDifferenceStepper final : public Stepper {
   }
 
   void initialize(SolverState& s) override {
-    const Index n = body_.dof_count();
+    const Index n = mechanics_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
     for (const DirichletDof& d : constrained_) s.u[d.dof] = d.value;
-    body_.external_force(0.0, f_ext_);
-    body_.internal_force(s.u, f_int_);
+    mechanics_.external_force(0.0, f_ext_);
+    mechanics_.internal_force(s.u, f_int_);
     acceleration(s.v, s.a);
   }
 
@@ -66,15 +56,15 @@ class CentralDifferenceStepper final : public Stepper {
     half_velocity_ = s.v + 0.5 * dt * s.a;
     zero_constrained(half_velocity_);
     s.u += dt * half_velocity_;
-    body_.external_force(t1, f_ext_);
+    mechanics_.external_force(t1, f_ext_);
     // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
     {
       ScopedTimer timer(report_.phases, Phase::assembly);  // the explicit step's phase studies compare
       if (beta_ != 0.0) {
         damped_u_ = s.u + beta_ * half_velocity_;
-        body_.internal_force(damped_u_, f_int_);
+        mechanics_.internal_force(damped_u_, f_int_);
       } else {
-        body_.internal_force(s.u, f_int_);
+        mechanics_.internal_force(s.u, f_int_);
       }
     }
     acceleration(half_velocity_, s.a);
@@ -89,13 +79,13 @@ class CentralDifferenceStepper final : public Stepper {
   void discretization_changed(SolverState& s) override {
     // The critical step is not estimated again (a Lanczos run costs an
     // assembly): the run keeps dt, and a growing instability stops it.
-    mass_ = body_.lumped_mass();
+    mass_ = mechanics_.lumped_mass();
     inverse_mass_ = mass_.cwiseInverse();
     if (beta_ != 0.0) {
       damped_u_ = s.u + beta_ * s.v;
-      body_.internal_force(damped_u_, f_int_);
+      mechanics_.internal_force(damped_u_, f_int_);
     } else {
-      body_.internal_force(s.u, f_int_);
+      mechanics_.internal_force(s.u, f_int_);
     }
     acceleration(s.v, s.a);
   }
@@ -103,17 +93,34 @@ class CentralDifferenceStepper final : public Stepper {
   double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(mass_.cwiseProduct(s.v)); }
   Vector reaction(const SolverState& s) override {
     Vector r;
-    body_.internal_force(s.u, r);
-    body_.external_force(s.t, f_ext_);
+    mechanics_.internal_force(s.u, r);
+    mechanics_.external_force(s.t, f_ext_);
     return r + mass_.cwiseProduct(s.a + alpha_ * s.v) - f_ext_;
   }
-  void applied_load(const SolverState& s, Vector& f) const override { body_.external_force(s.t, f); }
+  void applied_load(const SolverState& s, Vector& f) const override { mechanics_.external_force(s.t, f); }
   double time_step() const override { return options_.dt; }
   int step_count() const override {
     return std::max(1, static_cast<int>(std::llround(options_.duration / options_.dt)));
   }
 
  private:
+  /// The stable step with the lumped mass (s): the larger of the element bound
+  /// (FEM; safe but often twice too small) and 2 / omega_max by Lanczos on the
+  /// assembled stiffness at rest (an upper bound on omega_max), with stiffness damping.
+  double estimate_critical_step() {
+    std::optional<double> element_bound;
+    if (const auto* bound = capability<ElementStepBound>(mechanics_.body())) element_bound = bound->critical_time_step();
+    report_.add_stage("stiffness");
+    SparseMatrix K = build_pattern(mechanics_);
+    mechanics_.tangent(Vector::Zero(mechanics_.dof_count()), add_into(K), nullptr);
+    const EigenvalueBound omega2 = largest_eigenvalue(K, mass_, FreeDofs(mechanics_.dof_count(), constrained_));
+    const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
+    const double step = damped_critical_step(std::max(lanczos_step, element_bound.value_or(0.0)), beta_);
+    report_.solver.critical_dt_s = step;
+    if (element_bound) report_.solver.critical_dt_element_bound_s = damped_critical_step(*element_bound, beta_);
+    return step;
+  }
+
   /// a = M^-1 (f_ext - f_int - alpha M v), zero at constrained dofs; no allocation once sized.
   void acceleration(const Vector& v, Vector& a) const {
     a = inverse_mass_.cwiseProduct(f_ext_ - f_int_) - alpha_ * v;
@@ -123,7 +130,7 @@ class CentralDifferenceStepper final : public Stepper {
     for (const DirichletDof& d : constrained_) x[d.dof] = 0.0;
   }
 
-  const DiscreteBody& body_;
+  const MechanicalSystem& mechanics_;
   RunReport& report_;
   SolveOptions options_;
   double alpha_, beta_;
@@ -134,9 +141,9 @@ class CentralDifferenceStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_central_difference_stepper(DiscreteBody& body, const Scene& scene,
+std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const Scene& scene,
                                                          RunReport& report) {
-  return std::make_unique<CentralDifferenceStepper>(body, scene, report);
+  return std::make_unique<CentralDifferenceStepper>(mechanics, scene, report);
 }
 
 }  // namespace kerf

@@ -22,13 +22,13 @@ void apply_dirichlet(const std::vector<DirichletDof>& prescribed, Vector& u) {
 
 class StaticStepper final : public Stepper {
  public:
-  StaticStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
-      : body_(body), options_(scene.solve), system_(body, scene.solve, false, report), report_(report) {}
+  StaticStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
+      : mechanics_(mechanics), options_(scene.solve), system_(mechanics, scene.solve, false, report), report_(report) {}
 
   void initialize(SolverState& s) override {
-    s.u = Vector::Zero(body_.dof_count());
-    s.v = Vector::Zero(body_.dof_count());
-    s.a = Vector::Zero(body_.dof_count());
+    s.u = Vector::Zero(mechanics_.dof_count());
+    s.v = Vector::Zero(mechanics_.dof_count());
+    s.a = Vector::Zero(mechanics_.dof_count());
   }
 
   void advance(SolverState& s, double) override {
@@ -37,7 +37,7 @@ class StaticStepper final : public Stepper {
     load_at(load, f_ext_);
     std::vector<DirichletDof> prescribed;
     auto read_prescribed = [&] {
-      prescribed = body_.dirichlet(load);
+      prescribed = mechanics_.dirichlet(load);
       for (DirichletDof& d : prescribed)
         if (d.scales_with_load) d.value *= load;
     };
@@ -53,7 +53,7 @@ class StaticStepper final : public Stepper {
     // Contact: augmented Lagrangian rounds until no point penetrates beyond
     // tolerance and force-driven spheres carry their force.
     int round = 0;
-    for (; body_.augment(s.u, load); ++round) {
+    for (ContactTerm* contact = mechanics_.contact(); contact && contact->augment(s.u, load); ++round) {
       KERF_CHECK(round < max_augmentations, where.str(), ": contact did not settle in ", max_augmentations,
                  " augmented Lagrangian rounds (penetration or the sphere's force still off); try more load steps");
       read_prescribed();
@@ -82,12 +82,12 @@ class StaticStepper final : public Stepper {
  private:
   /// The dead loads scaled by the load factor (pseudo-time of the static run).
   void load_at(double factor, Vector& f) const {
-    body_.external_force(factor, f);
+    mechanics_.external_force(factor, f);
     f *= factor;
   }
 
   static constexpr int max_augmentations = 50;
-  DiscreteBody& body_;
+  MechanicalSystem& mechanics_;
   SolveOptions options_;
   ImplicitSystem system_;
   RunReport& report_;
@@ -100,24 +100,24 @@ class StaticStepper final : public Stepper {
 /// the Newton loop and the reactions are shared.
 class DynamicImplicitStepper : public Stepper {
  public:
-  DynamicImplicitStepper(DiscreteBody& body, const Scene& scene, RunReport& report)
-      : body_(body),
+  DynamicImplicitStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
+      : mechanics_(mechanics),
         options_(scene.solve),
         alpha_(scene.material.damping_mass),
         beta_(scene.material.damping_stiffness),
-        system_(body, scene.solve, true, report) {}
+        system_(mechanics, scene.solve, true, report) {}
 
   void initialize(SolverState& s) override {
-    const Index n = body_.dof_count();
+    const Index n = mechanics_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
-    apply_dirichlet(body_.dirichlet(0.0), s.u);
+    apply_dirichlet(mechanics_.dirichlet(0.0), s.u);
     s.a = uses_acceleration() ? initial_acceleration(s) : Vector::Zero(n);
   }
 
   void advance(SolverState& s, double dt) override {
     const double t1 = s.t + dt;
-    body_.external_force(t1, f_ext_);
+    mechanics_.external_force(t1, f_ext_);
     Vector u = s.u;
     const std::string where = step_name(name(), s.step + 1, t1);
     Vector a, v;
@@ -131,7 +131,7 @@ class DynamicImplicitStepper : public Stepper {
         system_.update_matrix(cm, ck, where);
       }
     };
-    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), body_.dirichlet(t1), u, where);
+    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), mechanics_.dirichlet(t1), u, where);
     kinematics(s, dt, u, a, v);
     s.u = std::move(u);
     s.v = std::move(v);
@@ -148,12 +148,12 @@ class DynamicImplicitStepper : public Stepper {
   Vector reaction(const SolverState& s) override {
     Vector r;
     system_.internal_force(s.u, r, false);
-    body_.external_force(s.t, f_ext_);
+    mechanics_.external_force(s.t, f_ext_);
     r += system_.mass_times(s.a + alpha_ * s.v) - f_ext_;
     if (beta_ != 0.0) r += beta_ * system_.stiffness_times(s.v);
     return r;
   }
-  void applied_load(const SolverState& s, Vector& f) const override { body_.external_force(s.t, f); }
+  void applied_load(const SolverState& s, Vector& f) const override { mechanics_.external_force(s.t, f); }
   int last_iterations() const override { return result_.iterations; }
   double time_step() const override { return options_.dt; }
   int step_count() const override {
@@ -173,16 +173,16 @@ class DynamicImplicitStepper : public Stepper {
   Vector initial_acceleration(const SolverState& s) {
     Vector f_int;
     system_.internal_force(s.u, f_int, true);
-    body_.external_force(s.t, f_ext_);
+    mechanics_.external_force(s.t, f_ext_);
     Vector rhs = f_ext_ - f_int - alpha_ * system_.mass_times(s.v);
     if (beta_ != 0.0) rhs -= beta_ * system_.stiffness_times(s.v);
     system_.update_matrix(1.0, 0.0, std::string(name()) + " initial acceleration");
-    Vector a = Vector::Zero(body_.dof_count());
+    Vector a = Vector::Zero(mechanics_.dof_count());
     system_.free().add_to_full(system_.solve(system_.free().restrict_vector(rhs), "initial acceleration"), a);
     return a;
   }
 
-  const DiscreteBody& body_;
+  MechanicalSystem& mechanics_;
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;
@@ -225,14 +225,14 @@ class NewmarkStepper final : public DynamicImplicitStepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_static_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
-  return std::make_unique<StaticStepper>(body, scene, report);
+std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
+  return std::make_unique<StaticStepper>(mechanics, scene, report);
 }
-std::unique_ptr<Stepper> make_implicit_euler_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
-  return std::make_unique<ImplicitEulerStepper>(body, scene, report);
+std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
+  return std::make_unique<ImplicitEulerStepper>(mechanics, scene, report);
 }
-std::unique_ptr<Stepper> make_newmark_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
-  return std::make_unique<NewmarkStepper>(body, scene, report);
+std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
+  return std::make_unique<NewmarkStepper>(mechanics, scene, report);
 }
 
 }  // namespace kerf

@@ -7,8 +7,8 @@
 
 namespace kerf {
 
-std::unique_ptr<Stepper> make_static_stepper(DiscreteBody& body, const Scene& scene, RunReport& report);
-std::unique_ptr<Stepper> make_implicit_euler_stepper(DiscreteBody& body, const Scene& scene, RunReport& report);
-std::unique_ptr<Stepper> make_newmark_stepper(DiscreteBody& body, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report);
 
 }  // namespace kerf

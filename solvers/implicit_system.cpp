@@ -6,14 +6,14 @@ namespace kerf {
 namespace {
 
 /// Translations and infinitesimal rotations on the free dofs, orthonormalised.
-std::vector<Vector> rigid_body_modes(const DiscreteBody& body, const FreeDofs& free) {
-  const int dim = body.dofs_per_node();
+std::vector<Vector> rigid_body_modes(const MechanicalSystem& mechanics, const FreeDofs& free) {
+  const int dim = mechanics.dofs_per_node();
   std::vector<Vector> modes;
   auto add = [&](auto&& mode_at) {
     Vector v(free.free_count());
     for (Index i = 0; i < free.free_count(); ++i) {
       Index dof = free.free_dofs()[i];
-      v[i] = mode_at(body.node_position(dof / dim))[dof % dim];
+      v[i] = mode_at(mechanics.dof_position(dof))[dof % dim];
     }
     for (const Vector& m : modes) v -= m.dot(v) * m;  // Gram-Schmidt
     if (v.norm() > 1e-12 * std::sqrt(static_cast<double>(v.size()))) modes.push_back(v.normalized());
@@ -26,12 +26,12 @@ std::vector<Vector> rigid_body_modes(const DiscreteBody& body, const FreeDofs& f
 
 }  // namespace
 
-ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass,
+ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass,
                                RunReport& report)
-    : body_(body), report_(report), free_(body.dof_count(), body.dirichlet(0.0)) {
+    : mechanics_(mechanics), report_(report), free_(mechanics.dof_count(), mechanics.dirichlet(0.0)) {
   ScopedTimer timer(report_.phases, Phase::setup);
   KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
-  stiffness_ = build_pattern(body_);
+  stiffness_ = build_pattern(mechanics_);
   system_ = stiffness_;
   diagonal_ = diagonal_positions(stiffness_);
   free_.prepare_matrix(stiffness_);
@@ -41,8 +41,8 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
   linear.relative_tolerance = options.linear_tolerance;
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
-  solver_->set_near_null_space(rigid_body_modes(body_, free_));
-  reuse_factorization_ = !body_.is_linear() && solver_->exact_factor();
+  solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
+  reuse_factorization_ = !mechanics_.is_linear() && solver_->exact_factor();
   if (needs_mass) {
     has_mass_ = true;
     lumped_ = options.mass == MassKind::lumped;
@@ -53,12 +53,12 @@ ImplicitSystem::ImplicitSystem(const DiscreteBody& body, const SolveOptions& opt
 void ImplicitSystem::read_mass() {
   report_.add_stage("mass");
   if (lumped_) {
-    lumped_mass_ = body_.lumped_mass();
+    lumped_mass_ = mechanics_.lumped_mass();
     return;
   }
   SparseMatrix mass = stiffness_;
   std::fill(mass.valuePtr(), mass.valuePtr() + mass.nonZeros(), 0.0);
-  body_.consistent_mass(add_into(mass));
+  mechanics_.consistent_mass(add_into(mass));
   mass_values_.assign(mass.valuePtr(), mass.valuePtr() + mass.nonZeros());
 }
 
@@ -74,33 +74,34 @@ void ImplicitSystem::discretization_changed() {
 
 void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangent) {
   ScopedTimer timer(report_.phases, Phase::assembly);
-  if (const DiscreteBody* linear = body_.linear_part()) {
+  if (mechanics_.linear_body_with_terms()) {
     // A linear body with contact: the body's stiffness once, the rest at every call.
     if (linear_values_.empty()) {
       report_.add_stage("stiffness");
       SparseMatrix K = stiffness_;
       std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
-      linear->tangent(Vector::Zero(linear->dof_count()), add_into(K), nullptr);
+      const DiscreteBody& body = mechanics_.body();
+      body.tangent(Vector::Zero(body.dof_count()), add_into(K), nullptr);
       linear_values_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
     }
     Eigen::Map<const SparseMatrix> K(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
                                      stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), linear_values_.data());
     f = K * u;
     if (!with_tangent) {
-      body_.add_nonlinear_part(u, f, nullptr);
+      mechanics_.add_terms(u, f, nullptr);
       return;
     }
     std::copy(linear_values_.begin(), linear_values_.end(), stiffness_.valuePtr());
     const BlockSink sink = add_into(stiffness_);
-    body_.add_nonlinear_part(u, f, &sink);
+    mechanics_.add_terms(u, f, &sink);
     stiffness_assembled_ = true;
     stiffness_changed_ = true;
     return;
   }
-  if (body_.is_linear()) {
+  if (mechanics_.is_linear()) {
     if (!stiffness_assembled_) {
       report_.add_stage("stiffness");
-      body_.tangent(u, add_into(stiffness_), nullptr);
+      mechanics_.tangent(u, add_into(stiffness_), nullptr);
       stiffness_assembled_ = true;
       stiffness_changed_ = true;
     }
@@ -108,12 +109,12 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
     return;
   }
   if (!with_tangent) {
-    body_.internal_force(u, f);
+    mechanics_.internal_force(u, f);
     return;
   }
   report_.add_stage("stiffness");
   std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
-  body_.tangent(u, add_into(stiffness_), &f);
+  mechanics_.tangent(u, add_into(stiffness_), &f);
   stiffness_assembled_ = true;
   stiffness_changed_ = true;
 }

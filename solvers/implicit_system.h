@@ -10,16 +10,17 @@
 
 #include "core/run_report.h"
 #include "solvers/linear_solver.h"
+#include "solvers/mechanical_system.h"
 #include "solvers/sparse_assembly.h"
 
 namespace kerf {
 
 class ImplicitSystem {
  public:
-  ImplicitSystem(const DiscreteBody& body, const SolveOptions& options, bool needs_mass, RunReport& report);
+  ImplicitSystem(const MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass, RunReport& report);
 
   const FreeDofs& free() const { return free_; }
-  const DiscreteBody& body() const { return body_; }
+  const MechanicalSystem& mechanics() const { return mechanics_; }
 
   /// f_int(u) into f (all dofs). With `with_tangent`, K(u) is assembled too.
   /// A linear body assembles K once and computes f = K u.
@@ -39,13 +40,13 @@ class ImplicitSystem {
   Vector solve(const Vector& rhs_free, const std::string& where);
 
  private:
-  const DiscreteBody& body_;
+  const MechanicalSystem& mechanics_;
   RunReport& report_;
   FreeDofs free_;
   SparseMatrix stiffness_;
   SparseMatrix system_;          // c_M M + c_K K, all dofs
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
-  std::vector<double> linear_values_;  // body.linear_part()'s stiffness in the pattern of K
+  std::vector<double> linear_values_;  // a linear body's own stiffness (with contact) in the pattern of K
   Vector lumped_mass_;
   std::vector<Index> diagonal_;
   bool has_mass_ = false;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "core/run_report.h"
+#include "problem/scene.h"
 #include "solvers/sparse_assembly.h"
 
 namespace kerf {

@@ -20,7 +20,7 @@ NewtonResult newton_solve(ImplicitSystem& system, const NewtonOptions& options, 
                           double force_scale, const std::vector<DirichletDof>& prescribed, Vector& u,
                           const std::string& where) {
   const FreeDofs& free = system.free();
-  const bool linear = system.body().is_linear();
+  const bool linear = system.mechanics().is_linear();
   Vector r, trial, r_trial;
   // What the constrained dofs still have to move (zero on free dofs).
   Vector jump = Vector::Zero(u.size());

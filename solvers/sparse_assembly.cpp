@@ -7,11 +7,15 @@
 namespace kerf {
 
 SparseMatrix build_pattern(const DiscreteBody& body) {
+  return build_pattern(body.dofs_per_node(), body.dof_count(),
+                       [&](const CouplingVisitor& visit) { body.visit_couplings(visit); });
+}
+
+SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
   // Couplings are gathered node by node (a block holds whole nodes), with
   // duplicates squeezed out as a list grows: meshless bodies visit each node
   // pair dozens of times.
-  const int dpn = body.dofs_per_node();
-  const Index nodes = body.node_count(), n = body.dof_count();
+  const Index nodes = n / dpn;
   std::vector<std::vector<Index>> adjacent(nodes);
   std::vector<std::size_t> unique_size(nodes, 0);
   auto squeeze = [](std::vector<Index>& list) {
@@ -19,7 +23,7 @@ SparseMatrix build_pattern(const DiscreteBody& body) {
     list.erase(std::unique(list.begin(), list.end()), list.end());
   };
   std::vector<Index> block_nodes;
-  body.visit_couplings([&](std::span<const Index> dofs) {
+  visit_couplings([&](std::span<const Index> dofs) {
     KERF_DCHECK(dofs.size() % dpn == 0);  // a coupling block holds whole nodes
     block_nodes.clear();
     for (std::size_t i = 0; i < dofs.size(); i += dpn) block_nodes.push_back(dofs[i] / dpn);

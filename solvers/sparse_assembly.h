@@ -12,6 +12,9 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
 
 /// The pattern of every block the body will write, values zero; diagonal always present.
 SparseMatrix build_pattern(const DiscreteBody& body);
+/// The same for any n dofs (dofs_per_node each) whose couplings `visit_couplings` names.
+SparseMatrix build_pattern(int dofs_per_node, Index n,
+                           const std::function<void(const CouplingVisitor&)>& visit_couplings);
 
 /// A sink adding scale * block into `matrix` (whose pattern holds the block); thread-safe.
 BlockSink add_into(SparseMatrix& matrix, double scale = 1.0);

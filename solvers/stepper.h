@@ -1,10 +1,11 @@
 #pragma once
-// Time integration of a DiscreteBody, whatever the method. A static analysis is
-// a stepper too: its steps are load increments in pseudo-time 0..1.
+// Time integration of a mechanical system (a body and its solver-side terms),
+// whatever the method. A static analysis is a stepper too: its steps are load
+// increments in pseudo-time 0..1.
 #include <memory>
 
 #include "core/run_report.h"
-#include "discretization/discrete_body.h"
+#include "solvers/mechanical_system.h"
 
 namespace kerf {
 
@@ -40,6 +41,6 @@ class Stepper {
 
 /// Picks static, implicit Euler, Newmark or central differences from the scene.
 /// Refuses an explicit dt above the critical estimate, naming the estimate.
-std::unique_ptr<Stepper> make_stepper(DiscreteBody& body, const Scene& scene, RunReport& report);
+std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report);
 
 }  // namespace kerf

@@ -4,15 +4,15 @@
 
 namespace kerf {
 
-std::unique_ptr<Stepper> make_stepper(DiscreteBody& body, const Scene& scene, RunReport& report) {
-  if (scene.solve.analysis == Analysis::static_analysis) return make_static_stepper(body, scene, report);
+std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
+  if (scene.solve.analysis == Analysis::static_analysis) return make_static_stepper(mechanics, scene, report);
   switch (scene.solve.integrator) {
     case Integrator::implicit_euler:
-      return make_implicit_euler_stepper(body, scene, report);
+      return make_implicit_euler_stepper(mechanics, scene, report);
     case Integrator::newmark:
-      return make_newmark_stepper(body, scene, report);
+      return make_newmark_stepper(mechanics, scene, report);
     case Integrator::central_difference:
-      return make_central_difference_stepper(body, scene, report);
+      return make_central_difference_stepper(mechanics, scene, report);
   }
   return nullptr;
 }

@@ -342,7 +342,7 @@ SurfaceSamples FemBody::surface_samples(const Box& region, int points_per_direct
   return out;
 }
 
-std::optional<double> FemBody::critical_time_step() const {
+double FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.
   const int dim = mesh_.dimension, n = npc_ * dim;

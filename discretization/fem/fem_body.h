@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "core/run_report.h"
-#include "discretization/discrete_body.h"
+#include "discretization/body_capabilities.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cell_schedule.h"
@@ -15,7 +15,7 @@
 
 namespace kerf {
 
-class FemBody final : public DiscreteBody {
+class FemBody final : public DiscreteBody, public SurfaceSampling, public ElementStepBound, public MeshedBody {
  public:
   /// Builds loads and constraints from the scene; throws on a selection that takes nothing.
   FemBody(const Scene& scene, Mesh mesh);
@@ -36,14 +36,16 @@ class FemBody final : public DiscreteBody {
   void consistent_mass(const BlockSink& sink) const override;
   void external_force(double t, Vector& f) const override;
   std::vector<DirichletDof> dirichlet(double t) const override { return dirichlet_; }
-  std::optional<double> critical_time_step() const override;
 
   std::vector<Index> select_nodes(const Selection& selection) const override;
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override;
   void snapshot(const Vector& u, BodySnapshot& out) const override;
-  SurfaceSamples surface_samples(const Box& region, int points_per_direction) const override;
 
-  const Mesh& mesh() const { return mesh_; }
+  SurfaceSamples surface_samples(const Box& region, int points_per_direction) const override;
+  /// From element frequency bounds (the largest eigenvalue of each cell's
+  /// stiffness over its lumped mass).
+  double critical_time_step() const override;
+  const Mesh& mesh() const override { return mesh_; }
 
  private:
   /// Receives each element's stiffness block with the element's index; thread-safe per element.

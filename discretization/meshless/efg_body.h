@@ -18,7 +18,7 @@
 
 namespace kerf {
 
-class EfgBody final : public MeshlessBody {
+class EfgBody final : public MeshlessBody, public WeakConstraints {
  public:
   /// alpha = factor (lambda + 2 mu) / h, h the local node spacing.
   static constexpr double nitsche_factor = 10.0;

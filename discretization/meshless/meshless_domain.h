@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "discretization/discrete_body.h"
+#include "discretization/body_capabilities.h"
 #include "discretization/enrichment/cut_weights.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
@@ -59,7 +59,7 @@ class MeshlessDomain {
   /// Brings the cuts to time t. Returns the nodes whose enriched weight
   /// changed (sorted; empty when no piece appeared) after recomputing the
   /// rows of at_nodes() they touch (`rows`, when given, receives those rows).
-  std::vector<Index> advance_cuts(double t, std::vector<Index>* rows = nullptr);
+  std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr);
   /// Does the support of one of these nodes cover a boundary-load quadrature
   /// point (then the load vector must be integrated again)?
   bool boundary_loads_touch(std::span<const Index> nodes) const;
@@ -95,8 +95,6 @@ class MeshlessDomain {
   /// Nodes as VTK vertices with the MLS displacement u_h(x_I), Cauchy and von
   /// Mises stress at the nodes, support radius, nodal volume, condition number.
   void snapshot(const Vector& u, const MaterialLaw& law, BodySnapshot& out) const;
-  /// The pieces of the cuts present, with the opening across them (DiscreteBody::cut_snapshot).
-  void cut_snapshot(const Vector& u, BodySnapshot& out) const;
   std::vector<LatticeSnapshot> enrichment_lattices() const;
 
  private:

@@ -61,11 +61,11 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
   dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
 }
 
-std::optional<CutUpdate> NodalBody::advance_cuts(double t) {
+CutUpdate NodalBody::update_for_cuts(double t) {
   CutUpdate update;
   std::vector<Index> rows;
-  const std::vector<Index> changed = domain_.advance_cuts(t, &rows);
-  if (changed.empty()) return std::nullopt;
+  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows);
+  if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
   update.points = static_cast<Index>(rows.size());
   if (stabilized_) {

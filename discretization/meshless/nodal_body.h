@@ -23,7 +23,7 @@ struct StabilizationPairs {
   std::vector<double> stiffness, lever, lever_sum, lever_moment;
 };
 
-class NodalBody final : public MeshlessBody {
+class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
  public:
   /// The default c of the stabilisation (meshless.stabilization: true).
   static constexpr double default_stabilization = 0.1;
@@ -40,7 +40,9 @@ class NodalBody final : public MeshlessBody {
 
   Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override;
-  std::optional<CutUpdate> advance_cuts(double t) override;
+  /// The rows the new pieces touch: shape functions, stabilisation pairs and,
+  /// where a changed support covers a boundary load, the load vector.
+  CutUpdate update_for_cuts(double t) override;
 
   /// Stabilisation energy alone (J): zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "core/timer.h"
+#include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
 #include "problem/scene_reader.h"
 
@@ -68,6 +69,7 @@ void BM_CutUpdate(benchmark::State& state) {
   const Scene scene = cut_block(state.range(0) != 0, 0.1 * state.range(1) * node_spacing);
   RunReport report;
   std::unique_ptr<DiscreteBody> body;
+  CutsInShapeFunctions* cuts = nullptr;
   int next = 0;
   const int last = 2 * blade_positions - 2;  // time of the last triangle
   std::vector<double> seconds;
@@ -76,13 +78,14 @@ void BM_CutUpdate(benchmark::State& state) {
     if (!body || next > last) {
       state.PauseTiming();
       body = make_body(scene, report);
+      cuts = capability<CutsInShapeFunctions>(*body);
       next = 1;  // the first triangle is present at t = 0
       state.ResumeTiming();
     }
     const double start = now_seconds();
-    const std::optional<CutUpdate> update = body->advance_cuts(next++);
+    const CutUpdate update = cuts->update_for_cuts(next++);
     seconds.push_back(now_seconds() - start);
-    if (update) nodes += update->nodes, points += update->points;
+    nodes += update.nodes, points += update.points;
   }
   std::sort(seconds.begin(), seconds.end());
   state.counters["median_update_ms"] = 1e3 * seconds[seconds.size() / 2];

@@ -42,7 +42,8 @@ void implicit_step(benchmark::State& state, const std::string& solver) {
   Scene scene = block_scene(sizes[state.range(0)], solver);
   RunReport report;
   auto body = make_body(scene, report);
-  auto stepper = make_stepper(*body, scene, report);
+  MechanicalSystem mechanics(*body, scene, report);
+  auto stepper = make_stepper(mechanics, scene, report);
   SolverState s;
   stepper->initialize(s);
   // Steady state: the first steps pay for the symbolic analysis and first factorization.
@@ -71,12 +72,14 @@ void BM_CentralDifferenceStepCorotational(benchmark::State& state) {
   probe.solve.dt = 1e-7;
   RunReport probe_report;
   auto probe_body = make_body(probe, probe_report);
-  make_stepper(*probe_body, probe, probe_report);
+  MechanicalSystem probe_mechanics(*probe_body, probe, probe_report);
+  make_stepper(probe_mechanics, probe, probe_report);
   Scene scene = probe;
   scene.solve.dt = 0.9 * probe_report.solver.critical_dt_s.value();
   RunReport report;
   auto body = make_body(scene, report);
-  auto stepper = make_stepper(*body, scene, report);
+  MechanicalSystem mechanics(*body, scene, report);
+  auto stepper = make_stepper(mechanics, scene, report);
   SolverState s;
   stepper->initialize(s);
   for (auto _ : state) stepper->advance(s, scene.solve.dt);

@@ -47,7 +47,8 @@ void BM_NodalExplicitStep(benchmark::State& state) {
   Scene scene = nodal_block(state.range(0) != 0, state.range(1) ? "corotational" : "linear");
   RunReport report;
   auto body = make_body(scene, report);
-  auto stepper = make_stepper(*body, scene, report);
+  MechanicalSystem mechanics(*body, scene, report);
+  auto stepper = make_stepper(mechanics, scene, report);
   SolverState s;
   stepper->initialize(s);
   std::vector<double> steps;

@@ -141,8 +141,8 @@ TEST_P(FemElementTest, MassesAddUpToTheBodyMass) {
 }
 
 TEST_P(FemElementTest, CriticalStepShrinksWithTheMesh) {
-  double coarse = make_body(MaterialModel::linear, 0.5).critical_time_step().value();
-  double fine = make_body(MaterialModel::linear, 0.25).critical_time_step().value();
+  double coarse = make_body(MaterialModel::linear, 0.5).critical_time_step();
+  double fine = make_body(MaterialModel::linear, 0.25).critical_time_step();
   // The step is of order h / c, with c the dilatational wave speed.
   const double c = std::sqrt(Lame::from_young_poisson(1e6, 0.3).mu * (2 - 2 * 0.3) / (1 - 2 * 0.3) / 1000.0);
   EXPECT_GT(coarse, fine);

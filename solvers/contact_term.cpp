@@ -1,4 +1,4 @@
-#include "discretization/contact_body.h"
+#include "solvers/contact_term.h"
 
 #include <algorithm>
 #include <cmath>
@@ -39,72 +39,68 @@ double hertz_depth(int dim, double force, double radius, double e_star) {
 
 }  // namespace
 
-ContactBody::ContactBody(const Scene& scene, std::unique_ptr<DiscreteBody> body)
-    : body_(std::move(body)), dim_(body_->dofs_per_node()) {
-  const Material& material = scene.material;
-  const double e_star = material.young / (1.0 - material.poisson * material.poisson);
+ContactTerm::ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node)
+    : first_dof_(first_dof), dim_(dofs_per_node) {
   static_ = scene.solve.analysis == Analysis::static_analysis;
   explicit_ = !static_ && scene.solve.integrator == Integrator::central_difference;
-  const double rate2 = std::pow(2.0 / scene.solve.dt, 2);
-  for (const ContactSphere& c : scene.contact) {
-    Sphere s;
-    s.center = c.center;
-    s.radius = c.radius;
-    s.force = c.force;
-    s.displacement = c.displacement;
-    const double r = c.radius;
-    // The boundary the sphere can reach: within its radius of its path plus a
-    // margin of twice the travel (the path: the prescribed displacement, or
-    // three Hertz depths of its force on a half-space of this material).
-    Vec3 travel;
-    if (c.force) {
-      s.direction = c.force->normalized();  // nonzero, and in dynamic runs along an axis (validate())
-      s.half_space_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
-      travel = 3.0 * s.half_space_depth * s.direction;
-    } else {
-      travel = *c.displacement;
-    }
-    const double reach = r + 2.0 * travel.norm();
-    Box region;
-    region.min = c.center.cwiseMin(c.center + travel) - Vec3::Constant(reach);
-    region.max = c.center.cwiseMax(c.center + travel) + Vec3::Constant(reach);
-    SurfaceSamples samples = body_->surface_samples(region, contact_points_per_direction);
-    s.facets = std::move(samples.facets);
-    for (SurfacePoint& p : samples.points)
-      if (distance_to_segment(p.position, c.center, c.center + travel) < reach + p.size) s.points.push_back(std::move(p));
-    KERF_CHECK(!s.points.empty(), c.where.describe(), ": key 'sphere': the sphere (centre [", c.center.transpose(),
-               "], radius ", r, " m) cannot reach the body's boundary along its motion; expected a sphere on or "
-               "near the surface, moving into it");
-    const double overlap = r - distance_to_facets(c.center, s.facets);
-    KERF_CHECK(overlap <= 1e-6 * r, c.where.describe(), ": key 'sphere': the sphere starts ", overlap,
-               " m inside the body; expected it to start on or above the surface (move the centre out by that much)");
-    const double volume = dim_ == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
-    s.mass = material.density * volume;
-    double total_penalty = 0.0;  // N/m, every point pressing at once
-    for (const SurfacePoint& p : s.points) {
-      s.penalty.push_back((explicit_ ? explicit_penalty_factor : implicit_penalty_factor) * e_star / p.size);
-      total_penalty += s.penalty.back() * p.weight;
-    }
-    s.multiplier.assign(s.points.size(), 0.0);
-    // An explicit force-driven sphere is scaled up in mass, if need be, so that
-    // its contact springs do not shorten the critical step (omega dt <= 1).
-    if (explicit_ && s.force) s.mass = std::max(s.mass, 4.0 * total_penalty / rate2);
-    spheres_.push_back(std::move(s));
+  for (const ContactSphere& c : scene.contact) spheres_.push_back(place(c, surface, scene.material, scene.solve.dt));
+}
+
+ContactTerm::Sphere ContactTerm::place(const ContactSphere& c, const SurfaceSampling& surface,
+                                       const Material& material, double dt) const {
+  const double e_star = material.young / (1.0 - material.poisson * material.poisson);
+  Sphere s;
+  s.center = c.center;
+  s.radius = c.radius;
+  s.force = c.force;
+  s.displacement = c.displacement;
+  const double r = c.radius;
+  // The boundary the sphere can reach: within its radius of its path plus a
+  // margin of twice the travel (the path: the prescribed displacement, or
+  // three Hertz depths of its force on a half-space of this material).
+  Vec3 travel;
+  if (c.force) {
+    s.direction = c.force->normalized();  // nonzero, and in dynamic runs along an axis (validate())
+    s.half_space_depth = hertz_depth(dim_, c.force->norm(), r, e_star);
+    travel = 3.0 * s.half_space_depth * s.direction;
+  } else {
+    travel = *c.displacement;
   }
+  const double reach = r + 2.0 * travel.norm();
+  Box region;
+  region.min = c.center.cwiseMin(c.center + travel) - Vec3::Constant(reach);
+  region.max = c.center.cwiseMax(c.center + travel) + Vec3::Constant(reach);
+  SurfaceSamples samples = surface.surface_samples(region, contact_points_per_direction);
+  s.facets = std::move(samples.facets);
+  for (SurfacePoint& p : samples.points)
+    if (distance_to_segment(p.position, c.center, c.center + travel) < reach + p.size) s.points.push_back(std::move(p));
+  KERF_CHECK(!s.points.empty(), c.where.describe(), ": key 'sphere': the sphere (centre [", c.center.transpose(),
+             "], radius ", r, " m) cannot reach the body's boundary along its motion; expected a sphere on or "
+             "near the surface, moving into it");
+  const double overlap = r - distance_to_facets(c.center, s.facets);
+  KERF_CHECK(overlap <= 1e-6 * r, c.where.describe(), ": key 'sphere': the sphere starts ", overlap,
+             " m inside the body; expected it to start on or above the surface (move the centre out by that much)");
+  const double volume = dim_ == 3 ? 4.0 / 3.0 * std::numbers::pi * r * r * r : std::numbers::pi * r * r;
+  s.mass = material.density * volume;
+  double total_penalty = 0.0;  // N/m, every point pressing at once
+  for (const SurfacePoint& p : s.points) {
+    s.penalty.push_back((explicit_ ? explicit_penalty_factor : implicit_penalty_factor) * e_star / p.size);
+    total_penalty += s.penalty.back() * p.weight;
+  }
+  s.multiplier.assign(s.points.size(), 0.0);
+  // An explicit force-driven sphere is scaled up in mass, if need be, so that
+  // its contact springs do not shorten the critical step (omega dt <= 1).
+  if (explicit_ && s.force) s.mass = std::max(s.mass, total_penalty * dt * dt);
+  return s;
 }
 
-Vec3 ContactBody::node_position(Index node) const {
-  const Index inner_nodes = body_->node_count();
-  return node < inner_nodes ? body_->node_position(node) : spheres_[node - inner_nodes].center;
-}
-
-Vec3 ContactBody::sphere_displacement(std::size_t i, const Vector& u) const {
+Vec3 ContactTerm::sphere_displacement(std::size_t i, const Vector& u) const {
   Vec3 d = Vec3::Zero();
-  for (int k = 0; k < dim_; ++k) d[k] = u[dim_ * sphere_node(i) + k];
+  for (int k = 0; k < dim_; ++k) d[k] = u[sphere_dof(i) + k];
   return d;
 }
 
-ContactBody::PointContact ContactBody::evaluate(const Sphere& s, std::size_t q, const Vec3& centre,
+ContactTerm::PointContact ContactTerm::evaluate(const Sphere& s, std::size_t q, const Vec3& centre,
                                                 const Vector& u) const {
   const SurfacePoint& p = s.points[q];
   Vec3 x = p.position;
@@ -120,27 +116,23 @@ ContactBody::PointContact ContactBody::evaluate(const Sphere& s, std::size_t q, 
   return c;
 }
 
-void ContactBody::visit_couplings(const CouplingVisitor& visit) const {
-  body_->visit_couplings(visit);
+void ContactTerm::visit_couplings(const CouplingVisitor& visit) const {
   std::vector<Index> dofs;
-  for (std::size_t i = 0; i < spheres_.size(); ++i) {
-    const Index sphere_dof = dim_ * sphere_node(i);
+  for (std::size_t i = 0; i < spheres_.size(); ++i)
     for (const SurfacePoint& p : spheres_[i].points) {
       dofs.clear();
       for (Index n : p.interpolation.nodes)
         for (int k = 0; k < dim_; ++k) dofs.push_back(dim_ * n + k);
-      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof + k);
+      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof(i) + k);
       visit(dofs);
     }
-  }
 }
 
-void ContactBody::add_nonlinear_part(const Vector& u, Vector& f, const BlockSink* sink) const {
+void ContactTerm::add(const Vector& u, Vector& f, const BlockSink* sink) const {
   std::vector<Index> dofs;
   std::vector<double> beta, block;
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
     const Sphere& s = spheres_[i];
-    const Index sphere_dof = dim_ * sphere_node(i);
     const Vec3 centre = s.center + sphere_displacement(i, u);
     for (std::size_t q = 0; q < s.points.size(); ++q) {
       const PointContact c = evaluate(s, q, centre, u);
@@ -153,7 +145,7 @@ void ContactBody::add_nonlinear_part(const Vector& u, Vector& f, const BlockSink
       beta.push_back(-1.0);
       for (Index n : p.interpolation.nodes)
         for (int k = 0; k < dim_; ++k) dofs.push_back(dim_ * n + k);
-      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof + k);
+      for (int k = 0; k < dim_; ++k) dofs.push_back(sphere_dof(i) + k);
       // Energy w / (2 k) <lambda + k (R - |x - c|)>^2: force -w t dN, ...
       const Vec3 force = -p.weight * c.traction * c.normal;
       for (std::size_t a = 0; a <= m; ++a)
@@ -175,27 +167,7 @@ void ContactBody::add_nonlinear_part(const Vector& u, Vector& f, const BlockSink
   }
 }
 
-void ContactBody::internal_force(const Vector& u, Vector& f) const {
-  // Called every explicit step: the body's part goes through kept buffers.
-  const Index n = body_->dof_count();
-  inner_u_ = u.head(n);
-  body_->internal_force(inner_u_, inner_f_);
-  f.resize(dof_count());
-  f.head(n) = inner_f_;
-  f.tail(dof_count() - n).setZero();
-  add_nonlinear_part(u, f, nullptr);
-}
-
-void ContactBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
-  Vector inner;
-  body_->tangent(inner_part(u), sink, &inner);
-  Vector all = Vector::Zero(dof_count());
-  all.head(inner.size()) = inner;
-  add_nonlinear_part(u, all, &sink);
-  if (f) *f = std::move(all);
-}
-
-bool ContactBody::augment(const Vector& u, double t) {
+bool ContactTerm::augment(const Vector& u, double load) {
   // Multipliers change only when another solve follows, so that a settled
   // state keeps the tractions it is in equilibrium with.
   KERF_CHECK(static_, "internal: contact multipliers are updated in static runs only");
@@ -214,33 +186,36 @@ bool ContactBody::augment(const Vector& u, double t) {
         violated = true;
     }
     if (!s.force) continue;
-    const double target = t * s.force->norm();
+    const double target = load * s.force->norm();
     if (std::abs(push - target) <= force_tolerance * target) continue;
     violated = true;
-    // Secant on g = F^(2/3), linear in the depth for Hertz; until the sphere
-    // presses, steps of its half-space depth.
-    const double g = std::pow(push, 2.0 / 3.0), g_target = std::pow(target, 2.0 / 3.0);
-    double next;
-    if (push <= 0.0)
-      next = s.depth + s.half_space_depth * std::max(t, 0.1);
-    else if (s.previous_g <= 0.0 || g == s.previous_g)
-      next = s.depth + (g_target - g) * s.half_space_depth / g_target;
-    else
-      next = s.depth + (g_target - g) * (s.depth - s.previous_depth) / (g - s.previous_g);
-    s.previous_depth = s.depth;
-    s.previous_g = g;
-    s.depth = next;
+    step_depth(s, push, target, load);
   }
   if (violated)
     for (std::size_t i = 0; i < spheres_.size(); ++i) spheres_[i].multiplier = std::move(multipliers[i]);
   return violated;
 }
 
-std::optional<ContactReading> ContactBody::contact_reading(int index, const Vector& u) const {
-  if (index < 0 || index >= static_cast<int>(spheres_.size())) return std::nullopt;
-  const Sphere& s = spheres_[index];
+void ContactTerm::step_depth(Sphere& s, double push, double target, double load) const {
+  // Secant on g = F^(2/3), linear in the depth for Hertz; until the sphere
+  // presses, steps of its half-space depth.
+  const double g = std::pow(push, 2.0 / 3.0), g_target = std::pow(target, 2.0 / 3.0);
+  double next;
+  if (push <= 0.0)
+    next = s.depth + s.half_space_depth * std::max(load, 0.1);
+  else if (s.previous_g <= 0.0 || g == s.previous_g)
+    next = s.depth + (g_target - g) * s.half_space_depth / g_target;
+  else
+    next = s.depth + (g_target - g) * (s.depth - s.previous_depth) / (g - s.previous_g);
+  s.previous_depth = s.depth;
+  s.previous_g = g;
+  s.depth = next;
+}
+
+ContactReading ContactTerm::reading(Index sphere, const Vector& u) const {
+  const Sphere& s = spheres_[sphere];
   ContactReading reading;
-  reading.displacement = sphere_displacement(index, u);
+  reading.displacement = sphere_displacement(sphere, u);
   const Vec3 centre = s.center + reading.displacement;
   reading.indentation = s.radius - distance_to_facets(centre, s.facets);
   for (std::size_t q = 0; q < s.points.size(); ++q) {
@@ -250,42 +225,33 @@ std::optional<ContactReading> ContactBody::contact_reading(int index, const Vect
   return reading;
 }
 
-Vector ContactBody::lumped_mass() const {
-  Vector m(dof_count());
-  m.head(body_->dof_count()) = body_->lumped_mass();
-  for (std::size_t i = 0; i < spheres_.size(); ++i)
-    m.segment(dim_ * sphere_node(i), dim_).setConstant(spheres_[i].mass);
-  return m;
+void ContactTerm::fill_lumped_mass(Vector& lumped) const {
+  for (std::size_t i = 0; i < spheres_.size(); ++i) lumped.segment(sphere_dof(i), dim_).setConstant(spheres_[i].mass);
 }
 
-void ContactBody::consistent_mass(const BlockSink& sink) const {
-  body_->consistent_mass(sink);
+void ContactTerm::consistent_mass(const BlockSink& sink) const {
+  std::vector<Index> dofs(dim_);
+  std::vector<double> block(dim_ * dim_);
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
-    std::vector<Index> dofs;
-    std::vector<double> block(dim_ * dim_, 0.0);
+    std::fill(block.begin(), block.end(), 0.0);
     for (int k = 0; k < dim_; ++k) {
-      dofs.push_back(dim_ * sphere_node(i) + k);
+      dofs[k] = sphere_dof(i) + k;
       block[k * dim_ + k] = spheres_[i].mass;
     }
     sink(dofs, block);
   }
 }
 
-void ContactBody::external_force(double t, Vector& f) const {
-  Vector inner;
-  body_->external_force(t, inner);
-  f = Vector::Zero(dof_count());
-  f.head(inner.size()) = inner;
+void ContactTerm::fill_external_force(Vector& f) const {
   for (std::size_t i = 0; i < spheres_.size(); ++i)
-    if (spheres_[i].force) f.segment(dim_ * sphere_node(i), dim_) = spheres_[i].force->head(dim_);
+    if (spheres_[i].force) f.segment(sphere_dof(i), dim_) = spheres_[i].force->head(dim_);
 }
 
-std::vector<DirichletDof> ContactBody::dirichlet(double t) const {
-  std::vector<DirichletDof> out = body_->dirichlet(t);
+void ContactTerm::append_dirichlet(std::vector<DirichletDof>& out) const {
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
     const Sphere& s = spheres_[i];
     for (int k = 0; k < dim_; ++k) {
-      const Index dof = dim_ * sphere_node(i) + k;
+      const Index dof = sphere_dof(i) + k;
       if (s.displacement)
         out.push_back({dof, (*s.displacement)[k]});
       else if (static_)
@@ -294,7 +260,6 @@ std::vector<DirichletDof> ContactBody::dirichlet(double t) const {
         out.push_back({dof, 0.0});  // dynamic: held across its force
     }
   }
-  return out;
 }
 
 }  // namespace kerf

@@ -1,11 +1,10 @@
-#include "discretization/fem/state_transfer.h"
+#include "discretization/state_transfer.h"
 
 #include "core/check.h"
 
 namespace kerf {
 
-StateTransfer::StateTransfer(const FemBody& from, const FemBody& to) : dim_(to.dofs_per_node()) {
-  const Mesh& mesh = to.mesh();
+StateTransfer::StateTransfer(const DiscreteBody& from, const Mesh& mesh) : dim_(mesh.dimension) {
   const int corners = mesh.dimension + 1;
   // A cell of each node (its first), and a point 1e-6 of the way to that cell's centroid.
   std::vector<Index> cell_of(mesh.node_count(), -1);

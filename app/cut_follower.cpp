@@ -1,0 +1,64 @@
+#include "app/cut_follower.h"
+
+#include "core/check.h"
+#include "discretization/body_capabilities.h"
+#include "discretization/body_factory.h"
+#include "discretization/state_transfer.h"
+
+namespace kerf {
+
+CutFollower::CutFollower(const Scene& scene, SharedCuts cuts)
+    : scene_(scene), cuts_(std::move(cuts)), pieces_(cuts_->pieces_at(0.0)) {}
+
+bool CutFollower::follow(RunParts& run, SolverState& state, RunReport& report) {
+  const Index now = cuts_->pieces_at(state.t);
+  if (now == pieces_) return false;
+  pieces_ = now;
+  run.probes.reset();  // they refer to the body as it was
+  if (auto* in_place = capability<CutsInShapeFunctions>(*run.body))
+    update_rows(*in_place, run, state, report);
+  else
+    rebuild(run, state, report);
+  return true;
+}
+
+void CutFollower::update_rows(CutsInShapeFunctions& body, RunParts& run, SolverState& state,
+                              RunReport& report) const {
+  const double start = now_seconds();
+  const CutUpdate update = body.update_for_cuts(state.t);
+  const double updated = now_seconds();
+  run.stepper->discretization_changed(state);
+  const double refreshed = now_seconds();
+  report.cut_update_seconds.push_back(updated - start);
+  report.cut_refresh_seconds.push_back(refreshed - updated);
+  report.phases.add(Phase::cut_update, refreshed - start);
+  report.cuts.updated_nodes += update.nodes;
+  report.cuts.updated_points += update.points;
+}
+
+void CutFollower::rebuild(RunParts& run, SolverState& state, RunReport& report) const {
+  const double start = now_seconds();
+  RunReport rebuild_report;  // its setup phase is the cut update's, not the run's
+  std::unique_ptr<DiscreteBody> body = make_body(scene_, cuts_, rebuild_report, state.t);
+  const MeshedBody* meshed = capability<MeshedBody>(*body);
+  KERF_CHECK(meshed, "internal: a body that neither updates its cuts in place nor has a mesh cannot follow a cut");
+  const StateTransfer transfer(*run.body, meshed->mesh());
+  state.u = transfer(state.u);
+  state.v = transfer(state.v);
+  state.a = transfer(state.a);
+  const double updated = now_seconds();
+  run.stepper.reset();
+  run.mechanics = std::make_unique<MechanicalSystem>(*body, scene_, report);
+  run.stepper = make_stepper(*run.mechanics, scene_, report);
+  run.stepper->discretization_changed(state);
+  run.body = std::move(body);
+  const double refreshed = now_seconds();
+  report.cut_update_seconds.push_back(updated - start);
+  report.cut_refresh_seconds.push_back(refreshed - updated);
+  report.phases.add(Phase::cut_update, refreshed - start);
+  report.cuts.removed_cells += rebuild_report.cuts.removed_cells;
+  report.cuts.remeshes += 1;
+  report.cuts.updated_nodes += run.body->node_count();
+}
+
+}  // namespace kerf

@@ -1,0 +1,108 @@
+#pragma once
+// What only some bodies offer, beside the core of discrete_body.h: each an
+// interface of its own that a body implements when it has the feature, and
+// that the factory, the run loop or a solver term asks for once with
+// capability<C>(body) (null when the body has none).
+//
+//   SurfaceSampling        fem, efg, nodal   boundary quadrature points (contact)
+//   WeakConstraints        efg               reactions of weakly imposed constraints
+//   CutsInShapeFunctions   nodal             a cut's new piece updates rows in place
+//   EnrichmentLattices     efg, nodal        the Enrichment Grids' phi for ParaView
+//   DiscretizationFigures  efg, nodal        MLS conditioning for the summary
+//   ElementStepBound       fem               a cheap safe explicit step
+//   MeshedBody             fem               the mesh a state is carried onto
+#include <map>
+#include <string>
+#include <vector>
+
+#include "discretization/discrete_body.h"
+#include "geometry/mesh.h"
+
+namespace kerf {
+
+/// A quadrature point on the boundary, for surface terms that follow the
+/// deformation (contact): u(position) = interpolation applied to the nodal values.
+struct SurfacePoint {
+  Vec3 position = Vec3::Zero();  // reference (m)
+  double weight = 0.0;           // m^2 (2D: m, per metre of thickness)
+  double size = 0.0;             // the facet's edge length (m): the local resolution
+  PointInterpolation interpolation;
+};
+
+/// Boundary quadrature points and the straight facets they lie on (triangles;
+/// in 2D segments with c == b), in the reference configuration.
+struct SurfaceSamples {
+  std::vector<SurfacePoint> points;
+  std::vector<std::array<Vec3, 3>> facets;
+};
+
+class SurfaceSampling {
+ public:
+  virtual ~SurfaceSampling() = default;
+  /// Quadrature points on the boundary facets that have a corner inside
+  /// `region` (`points_per_direction` Gauss points per facet direction).
+  virtual SurfaceSamples surface_samples(const Box& region, int points_per_direction) const = 0;
+};
+
+class WeakConstraints {
+ public:
+  virtual ~WeakConstraints() = default;
+  /// The total force (N) that the constraints imposed weakly (penalty or
+  /// Nitsche) on the boundary faces inside `selection` exert on the body at u.
+  virtual Vec3 weak_reaction(const Vector& u, const Selection& selection) const = 0;
+};
+
+/// What a growing cut changed in a body.
+struct CutUpdate {
+  Index nodes = 0;   // nodes whose enriched weight changed
+  Index points = 0;  // integration points whose shape functions were recomputed
+};
+
+class CutsInShapeFunctions {
+ public:
+  virtual ~CutsInShapeFunctions() = default;
+  /// Brings the body's cuts to time t: the shape functions the new pieces
+  /// affect are rebuilt in place (the dofs and the sparsity stay, so the state
+  /// carries over unchanged).
+  virtual CutUpdate update_for_cuts(double t) = 0;
+};
+
+class EnrichmentLattices {
+ public:
+  virtual ~EnrichmentLattices() = default;
+  /// The Enrichment Grids' phi, one per grid-enriched cut present.
+  virtual std::vector<LatticeSnapshot> enrichment_lattices() const = 0;
+};
+
+class DiscretizationFigures {
+ public:
+  virtual ~DiscretizationFigures() = default;
+  /// Figures of the discretization as it stands, into the summary's extras.
+  virtual void add_figures(std::map<std::string, double>& extras) const = 0;
+};
+
+class ElementStepBound {
+ public:
+  virtual ~ElementStepBound() = default;
+  /// A safe central-difference step with the lumped mass (s), from element
+  /// frequency bounds at the undeformed state.
+  virtual double critical_time_step() const = 0;
+};
+
+class MeshedBody {
+ public:
+  virtual ~MeshedBody() = default;
+  virtual const Mesh& mesh() const = 0;
+};
+
+/// The body's capability C, or null.
+template <class C>
+const C* capability(const DiscreteBody& body) {
+  return dynamic_cast<const C*>(&body);
+}
+template <class C>
+C* capability(DiscreteBody& body) {
+  return dynamic_cast<C*>(&body);
+}
+
+}  // namespace kerf

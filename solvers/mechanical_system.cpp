@@ -1,0 +1,86 @@
+#include "solvers/mechanical_system.h"
+
+#include "core/check.h"
+#include "discretization/body_capabilities.h"
+
+namespace kerf {
+
+MechanicalSystem::MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report)
+    : body_(body), body_dofs_(body.dof_count()) {
+  if (scene.contact.empty()) return;
+  ScopedTimer timer(report.phases, Phase::setup);
+  const SurfaceSampling* surface = capability<SurfaceSampling>(body);
+  KERF_CHECK(surface, scene.contact.front().where.describe(),
+             ": this discretization has no surface samples, so nothing can touch it");
+  contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node());
+  report.add_stage("contact");
+}
+
+Vec3 MechanicalSystem::dof_position(Index dof) const {
+  const int dim = dofs_per_node();
+  return dof < body_dofs_ ? body_.node_position(dof / dim) : contact_->centre((dof - body_dofs_) / dim);
+}
+
+void MechanicalSystem::visit_couplings(const CouplingVisitor& visit) const {
+  body_.visit_couplings(visit);
+  if (contact_) contact_->visit_couplings(visit);
+}
+
+void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
+  if (!contact_) return body_.internal_force(u, f);
+  body_u_ = body_part(u);
+  body_.internal_force(body_u_, body_f_);
+  f.resize(dof_count());
+  f.head(body_dofs_) = body_f_;
+  f.tail(dof_count() - body_dofs_).setZero();
+  contact_->add(u, f, nullptr);
+}
+
+void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  if (!contact_) return body_.tangent(u, sink, f);
+  Vector body_f;
+  body_.tangent(body_part(u), sink, &body_f);
+  Vector all = Vector::Zero(dof_count());
+  all.head(body_dofs_) = body_f;
+  contact_->add(u, all, &sink);
+  if (f) *f = std::move(all);
+}
+
+void MechanicalSystem::add_terms(const Vector& u, Vector& f, const BlockSink* sink) const {
+  if (contact_) contact_->add(u, f, sink);
+}
+
+Vector MechanicalSystem::lumped_mass() const {
+  if (!contact_) return body_.lumped_mass();
+  Vector m(dof_count());
+  m.head(body_dofs_) = body_.lumped_mass();
+  contact_->fill_lumped_mass(m);
+  return m;
+}
+
+void MechanicalSystem::consistent_mass(const BlockSink& sink) const {
+  body_.consistent_mass(sink);
+  if (contact_) contact_->consistent_mass(sink);
+}
+
+void MechanicalSystem::external_force(double t, Vector& f) const {
+  if (!contact_) return body_.external_force(t, f);
+  Vector body_f;
+  body_.external_force(t, body_f);
+  f = Vector::Zero(dof_count());
+  f.head(body_dofs_) = body_f;
+  contact_->fill_external_force(f);
+}
+
+std::vector<DirichletDof> MechanicalSystem::dirichlet(double t) const {
+  std::vector<DirichletDof> out = body_.dirichlet(t);
+  if (contact_) contact_->append_dirichlet(out);
+  return out;
+}
+
+SparseMatrix build_pattern(const MechanicalSystem& mechanics) {
+  return build_pattern(mechanics.dofs_per_node(), mechanics.dof_count(),
+                       [&](const CouplingVisitor& visit) { mechanics.visit_couplings(visit); });
+}
+
+}  // namespace kerf

@@ -1,0 +1,63 @@
+#pragma once
+// The equations a stepper integrates: the body's own, plus the terms that live
+// on the solver side (contact with rigid spheres), over the body's dofs
+// followed by the terms' own (each sphere's translation). Steppers and the
+// implicit system see this, never the body alone, so the body knows nothing
+// of contact and contact nothing of the method.
+#include <memory>
+
+#include "core/run_report.h"
+#include "discretization/discrete_body.h"
+#include "solvers/contact_term.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf {
+
+class MechanicalSystem {
+ public:
+  /// The body with the scene's contact (none without `contact` in the scene).
+  /// Throws when the scene has contact and the body has no surface samples.
+  MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report);
+
+  const DiscreteBody& body() const { return body_; }
+  /// The contact term, or null.
+  const ContactTerm* contact() const { return contact_.get(); }
+  ContactTerm* contact() { return contact_.get(); }
+
+  int dofs_per_node() const { return body_.dofs_per_node(); }
+  Index dof_count() const { return body_dofs_ + (contact_ ? contact_->dof_count() : 0); }
+  /// Reference position of the node a dof belongs to (a sphere's centre for its dofs).
+  Vec3 dof_position(Index dof) const;
+  /// The body's part of a vector over all dofs (its dofs come first).
+  Vector body_part(const Vector& x) const { return x.head(body_dofs_); }
+
+  void visit_couplings(const CouplingVisitor& visit) const;
+  /// f_int(u) of the body and the terms (N). Not reentrant (kept buffers).
+  void internal_force(const Vector& u, Vector& f) const;
+  void tangent(const Vector& u, const BlockSink& sink, Vector* f) const;
+  /// Linear in u: a linear body without contact.
+  bool is_linear() const { return body_.is_linear() && !contact_; }
+  /// A linear body with contact: its stiffness may be assembled once
+  /// (body().tangent) and only the terms' part (add_terms) each time.
+  bool linear_body_with_terms() const { return body_.is_linear() && contact_; }
+  /// The terms' forces added into f, their tangent into *sink when given.
+  void add_terms(const Vector& u, Vector& f, const BlockSink* sink) const;
+  /// The body's strain energy (J; a contact penalty's is not counted).
+  double strain_energy(const Vector& u) const { return body_.strain_energy(body_part(u)); }
+
+  Vector lumped_mass() const;
+  void consistent_mass(const BlockSink& sink) const;
+  void external_force(double t, Vector& f) const;
+  std::vector<DirichletDof> dirichlet(double t) const;
+
+ private:
+  const DiscreteBody& body_;
+  Index body_dofs_;
+  std::unique_ptr<ContactTerm> contact_;
+  mutable Vector body_u_, body_f_;  // internal_force's buffers (every explicit step)
+};
+
+/// The pattern of every block the system will write (the body's and the terms').
+SparseMatrix build_pattern(const MechanicalSystem& mechanics);
+
+}  // namespace kerf
