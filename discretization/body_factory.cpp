@@ -30,10 +30,7 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
   return mesh_box(request);
 }
 
-int fem_order(const Scene& scene) {
-  const ElementType e = scene.discretization.fem.element;
-  return e == ElementType::tet10 || e == ElementType::tri6 ? 2 : 1;
-}
+int fem_order(const Scene& scene) { return element_kind(scene.discretization.fem.element).order; }
 
 std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
   const MeshlessOptions& options = scene.discretization.meshless;

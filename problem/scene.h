@@ -16,6 +16,20 @@ namespace kerf {
 enum class MaterialModel { linear, corotational, stvk, neohookean };
 enum class Method { fem, efg, nodal };
 enum class ElementType { tet4, tet10, tri3, tri6 };
+/// What the scene side needs of an element type: the dimension it fits, its polynomial order.
+struct ElementKind {
+  int dimension;
+  int order;
+};
+constexpr ElementKind element_kind(ElementType e) {
+  switch (e) {
+    case ElementType::tet4: return {3, 1};
+    case ElementType::tet10: return {3, 2};
+    case ElementType::tri3: return {2, 1};
+    case ElementType::tri6: return {2, 2};
+  }
+  return {0, 0};
+}
 enum class NodePlacement { lattice, mesh };
 enum class MlsBasis { linear, quadratic };
 enum class WeightFunction { quartic };

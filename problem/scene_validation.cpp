@@ -86,10 +86,13 @@ void validate_material(const Refusal& r, const Material& m) {
 }
 
 void validate_discretization(const Refusal& r, const DiscretizationOptions& d, int dim) {
-  const bool solid = d.fem.element == ElementType::tet4 || d.fem.element == ElementType::tet10;
-  r.require(solid == (dim == 3), "discretization.fem.element",
+  std::string fitting;  // the elements of this dimension
+  for (std::size_t e = 0; e < EnumNames<ElementType>::names.size(); ++e)
+    if (element_kind(static_cast<ElementType>(e)).dimension == dim)
+      fitting += (fitting.empty() ? "" : " | ") + std::string(EnumNames<ElementType>::names[e]);
+  r.require(element_kind(d.fem.element).dimension == dim, "discretization.fem.element",
             "value '" + std::string(to_string(d.fem.element)) + "' does not fit dimension " + std::to_string(dim) +
-                "; expected " + (dim == 3 ? "tet4 | tet10" : "tri3 | tri6"));
+                "; expected " + fitting);
   r.in_range(d.fem.size > 0.0, "discretization.fem.size", d.fem.size, "size > 0 (m)");
   for (std::size_t i = 0; i < d.refine.size(); ++i) {
     validate_box(r, d.refine[i].box, dim, item("discretization.refine", i) + ".box");

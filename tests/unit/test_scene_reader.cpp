@@ -127,7 +127,11 @@ TEST(SceneValidation, AppliesToScenesBuiltInCode) {
   scene.output.probes.push_back(Probe{"tip", ProbeField::displacement, std::nullopt, std::nullopt, std::nullopt, {}});
   expect_contains(testing::error_message([&] { validate(scene); }), "a displacement probe needs 'point");
   scene.output.probes.back().point = Vec3::Zero();
-  scene.cuts.push_back(Cut{{Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()}, true, {0.0, 0.1, 0.2}});
+  Cut cut;
+  cut.vertices = {Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY()};
+  cut.is_strip = true;
+  cut.times = {0.0, 0.1, 0.2};
+  scene.cuts.push_back(cut);
   scene.contact.push_back(ContactSphere{Vec3(0.5, 0.5, 1.5), 0.5, Vec3(0, 0, -1), std::nullopt, {}});
   expect_contains(testing::error_message([&] { validate(scene); }), "contact with a growing cut is not built yet");
   scene.cuts.back().times.assign(3, 0.0);
