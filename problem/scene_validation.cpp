@@ -10,6 +10,12 @@
 namespace kerf {
 namespace {
 
+/// The shortest form of a number that reads back the same.
+std::string number_text(double value) {
+  char buffer[32];
+  return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+}
+
 /// Refusals that name where a key came from and what it holds.
 class Refusal {
  public:
@@ -27,12 +33,10 @@ class Refusal {
   }
 
  private:
-  /// The value as the file wrote it, else the number (shortest form that reads back).
+  /// The value as the file wrote it, else the number.
   std::string text(const std::string& key, double value) const {
     const SourceLocation where = scene_.locate(key);
-    if (!where.text.empty() && where.key == key) return where.text;
-    char buffer[32];
-    return std::string(buffer, std::to_chars(buffer, buffer + sizeof buffer, value).ptr);
+    return !where.text.empty() && where.key == key ? where.text : number_text(value);
   }
 
   const Scene& scene_;
@@ -168,7 +172,7 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
             "fem: remove, or domain.box");
   for (std::size_t i = 0; i < cut.times.size(); ++i)
     r.require(cut.times[i] <= 0.0 || s.discretization.method != Method::efg, item(key + ".times", i),
-              "value " + std::to_string(cut.times[i]) + " at vertex " + std::to_string(i) +
+              "value " + number_text(cut.times[i]) + " at vertex " + std::to_string(i) +
                   ": a growing cut in efg (the Gauss points, loads and weak constraints updated) is not built yet; "
                   "expected discretization.method nodal or fem, or every vertex present at t = 0");
 }
@@ -177,7 +181,7 @@ void validate_solve(const Refusal& r, const SolveOptions& s) {
   r.in_range(s.dt > 0.0, "solve.dt", s.dt, "dt > 0 (s)");
   r.in_range(s.duration > 0.0, "solve.duration", s.duration, "duration > 0 (s)");
   r.in_range(s.analysis != Analysis::dynamic || s.dt <= s.duration, "solve.dt", s.dt,
-             "dt <= duration (" + std::to_string(s.duration) + " s)");
+             "dt <= duration (" + number_text(s.duration) + " s)");
   r.in_range(s.load_steps >= 1, "solve.load_steps", s.load_steps, "load_steps >= 1");
   r.in_range(s.newton.tolerance > 0.0 && s.newton.tolerance < 1.0, "solve.newton.tolerance", s.newton.tolerance,
              "0 < tolerance < 1 (relative residual)");
