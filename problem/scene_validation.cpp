@@ -119,6 +119,7 @@ void validate_boundary(const Refusal& r, const Scene& s) {
     r.require(!(dirichlet && neumann), key,
               "an item either prescribes displacements (fix, displacement) or loads (traction, pressure), not both; "
               "use two items");
+    r.require(s.dimension == 3 || !bc.fixed[2], key + ".fix", "component z is out of range; expected x or y in 2D");
     for (int a = 0; a < 3; ++a)
       r.require(!(bc.fixed[a] && bc.displacement[a]), key + ".displacement",
                 "component " + std::string(1, "xyz"[a]) + " is both fixed and prescribed");

@@ -90,6 +90,10 @@ TEST(SceneReader, WrongTypesAndShapesAreRefused) {
   expect_contains(refusal("material: {young: 1}\n"), "missing 'domain'");
   expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: w, at: 0}}\n    fix: [x]\n"),
                   "expected one of x | y | z");
+  const std::string plate = "dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\nboundary:\n";
+  expect_contains(refusal(plate + "  - select: {plane: {axis: z, at: 0}}\n    fix: [x]\n"), "expected x or y in 2D");
+  expect_contains(refusal(plate + "  - select: {plane: {axis: x, at: 0}}\n    fix: [x, z]\n"),
+                  "test.yaml:5:10: key 'boundary.0.fix': component z is out of range; expected x or y in 2D");
 }
 
 TEST(SceneReader, SetOverridesAnyKeyByDottedPath) {
