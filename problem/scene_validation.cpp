@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cstdlib>
 #include <filesystem>
 #include <sstream>
 
@@ -33,10 +34,17 @@ class Refusal {
   }
 
  private:
-  /// The value as the file wrote it, else the number.
+  /// The value as the file wrote it ('1e6'), when that still is the value
+  /// (code may have changed it since), else the number.
   std::string text(const std::string& key, double value) const {
-    const SourceLocation where = scene_.locate(key);
-    return !where.text.empty() && where.key == key ? where.text : number_text(value);
+    const std::string written = scene_.locate(key).text;  // quoted by the reader: "'1e6'"
+    if (written.size() > 2 && written.front() == '\'' && written.back() == '\'') {
+      const std::string inner = written.substr(1, written.size() - 2);
+      char* end = nullptr;
+      const double read = std::strtod(inner.c_str(), &end);
+      if (end == inner.c_str() + inner.size() && read == value) return written;
+    }
+    return number_text(value);
   }
 
   const Scene& scene_;

@@ -144,6 +144,14 @@ TEST(SceneValidation, AppliesToScenesBuiltInCode) {
   expect_contains(testing::error_message([&] { validate(scene); }), "key 'contact.0.force': value [0, 1, -1]");
 }
 
+// A value changed in code after reading is reported as it is now, at the line the file wrote it.
+TEST(SceneValidation, AValueChangedInCodeIsReportedAsItIsNow) {
+  Scene scene = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {poisson: 0.3}\n");
+  scene.material.poisson = 0.7;
+  expect_contains(testing::error_message([&] { validate(scene); }),
+                  "test.yaml:2:21: key 'material.poisson': value 0.7 is out of range");
+}
+
 TEST(SceneValidation, ADefaultMadeWrongPointsAtTheSectionWritten) {
   std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {analysis: dynamic, duration: 0.0005}\n");
   expect_contains(m, "test.yaml:2:8: key 'solve.dt': value 0.001 is out of range; expected dt <= duration");
