@@ -6,6 +6,16 @@
 #include "discretization/state_transfer.h"
 
 namespace kerf {
+namespace {
+
+/// A growth's times: the body's update [start, updated], the solver side's refresh [updated, refreshed].
+void record_growth(RunReport& report, double start, double updated, double refreshed) {
+  report.cut_update_seconds.push_back(updated - start);
+  report.cut_refresh_seconds.push_back(refreshed - updated);
+  report.phases.add(Phase::cut_update, refreshed - start);
+}
+
+}  // namespace
 
 CutFollower::CutFollower(const Scene& scene, SharedCuts cuts)
     : scene_(scene), cuts_(std::move(cuts)), pieces_(cuts_->pieces_at(0.0)) {}
@@ -28,10 +38,7 @@ void CutFollower::update_rows(CutsInShapeFunctions& body, RunParts& run, SolverS
   const CutUpdate update = body.update_for_cuts(state.t);
   const double updated = now_seconds();
   run.stepper->discretization_changed(state);
-  const double refreshed = now_seconds();
-  report.cut_update_seconds.push_back(updated - start);
-  report.cut_refresh_seconds.push_back(refreshed - updated);
-  report.phases.add(Phase::cut_update, refreshed - start);
+  record_growth(report, start, updated, now_seconds());
   report.cuts.updated_nodes += update.nodes;
   report.cuts.updated_points += update.points;
 }
@@ -52,10 +59,7 @@ void CutFollower::rebuild(RunParts& run, SolverState& state, RunReport& report) 
   run.stepper = make_stepper(*run.mechanics, scene_, report);
   run.stepper->discretization_changed(state);
   run.body = std::move(body);
-  const double refreshed = now_seconds();
-  report.cut_update_seconds.push_back(updated - start);
-  report.cut_refresh_seconds.push_back(refreshed - updated);
-  report.phases.add(Phase::cut_update, refreshed - start);
+  record_growth(report, start, updated, now_seconds());
   report.cuts.removed_cells += rebuild_report.cuts.removed_cells;
   report.cuts.remeshes += 1;
   report.cuts.updated_nodes += run.body->node_count();

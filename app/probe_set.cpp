@@ -75,18 +75,19 @@ std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState&
                                            const EnergyState& energy) const {
   std::vector<double> v;
   switch (r.probe.field) {
-    case ProbeField::displacement:
-      v.assign(dim_, 0.0);
-      for (std::size_t k = 0; k < r.interpolation.nodes.size(); ++k)
-        for (int i = 0; i < dim_; ++i) v[i] += r.interpolation.weights[k] * state.u[dim_ * r.interpolation.nodes[k] + i];
+    case ProbeField::displacement: {
+      const Vec3 x = interpolate(r.interpolation, state.u, dim_);
+      v.assign(x.data(), x.data() + dim_);
       break;
+    }
     case ProbeField::reaction:
       v.assign(dim_, 0.0);
     {
       for (Index n : r.nodes)
         for (int i = 0; i < dim_; ++i) v[i] += reaction[dim_ * n + i];
       if (weak_) {
-        const Vec3 weak = weak_->weak_reaction(mechanics_.body_part(state.u), *r.probe.select);
+        Vector buffer;
+        const Vec3 weak = weak_->weak_reaction(mechanics_.body_part(state.u, buffer), *r.probe.select);
         for (int i = 0; i < dim_; ++i) v[i] += weak[i];
       }
       break;

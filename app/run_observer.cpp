@@ -47,7 +47,7 @@ void RunObserver::write(const RunParts& run, const SolverState& state, std::size
   row.insert(row.begin(), state.t);
   table_.append(row);
   if (vtk_) {
-    const Vector u = run.mechanics->body_part(state.u);
+    const Vector& u = run.mechanics->body_part(state.u, body_u_);
     BodySnapshot body, cut;
     run.body->snapshot(u, body);
     cut_snapshot(*cuts_, state.t, *run.body, u, cut);

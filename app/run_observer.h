@@ -39,7 +39,7 @@ class RunObserver {
   ProbeTable table_;
   EnergyState energy_;
   std::size_t lattices_written_at_ = static_cast<std::size_t>(-1);  // growths when the grids were last written
-  Vector reaction_, load_before_, load_after_, u_before_;
+  Vector reaction_, load_before_, load_after_, u_before_, body_u_;
 };
 
 }  // namespace kerf

@@ -30,13 +30,8 @@ void cut_snapshot(const CutTimeline& cuts, double t, const DiscreteBody& body, c
       try {
         auto plus = body.interpolation_at(cut.vertices[v] + delta * normal);
         auto minus = body.interpolation_at(cut.vertices[v] - delta * normal);
-        auto value = [&](const PointInterpolation& p) {
-          Vec3 x = Vec3::Zero();
-          for (std::size_t k = 0; k < p.nodes.size(); ++k)
-            for (int i = 0; i < dim; ++i) x[i] += p.weights[k] * u[dim * p.nodes[k] + i];
-          return x;
-        };
-        if (plus && minus) jump = value(*plus) - value(*minus);  // outside the body: no opening
+        // Outside the body: no opening.
+        if (plus && minus) jump = interpolate(*plus, u, dim) - interpolate(*minus, u, dim);
       } catch (const Error&) {
         // Output only: a vertex where too few nodes see either side shows NaN, not a stopped run.
         jump = Vec3::Constant(std::numeric_limits<double>::quiet_NaN());

@@ -44,6 +44,14 @@ struct PointInterpolation {
   std::vector<double> weights;
 };
 
+/// sum_k w_k u_{node_k} for a node-major u with `dim` components a node (z = 0 in 2D).
+inline Vec3 interpolate(const PointInterpolation& p, const Vector& u, int dim) {
+  Vec3 x = Vec3::Zero();
+  for (std::size_t k = 0; k < p.nodes.size(); ++k)
+    for (int i = 0; i < dim; ++i) x[i] += p.weights[k] * u[dim * p.nodes[k] + i];
+  return x;
+}
+
 class DiscreteBody {
  public:
   virtual ~DiscreteBody() = default;

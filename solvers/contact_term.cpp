@@ -103,9 +103,7 @@ Vec3 ContactTerm::sphere_displacement(std::size_t i, const Vector& u) const {
 ContactTerm::PointContact ContactTerm::evaluate(const Sphere& s, std::size_t q, const Vec3& centre,
                                                 const Vector& u) const {
   const SurfacePoint& p = s.points[q];
-  Vec3 x = p.position;
-  for (std::size_t k = 0; k < p.interpolation.nodes.size(); ++k)
-    for (int i = 0; i < dim_; ++i) x[i] += p.interpolation.weights[k] * u[dim_ * p.interpolation.nodes[k] + i];
+  const Vec3 x = p.position + interpolate(p.interpolation, u, dim_);
   PointContact c;
   const Vec3 d = x - centre;
   c.distance = d.norm();
@@ -129,8 +127,9 @@ void ContactTerm::visit_couplings(const CouplingVisitor& visit) const {
 }
 
 void ContactTerm::add(const Vector& u, Vector& f, const BlockSink* sink) const {
-  std::vector<Index> dofs;
-  std::vector<double> beta, block;
+  std::vector<Index>& dofs = dofs_;
+  std::vector<double>& beta = beta_;
+  std::vector<double>& block = block_;
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
     const Sphere& s = spheres_[i];
     const Vec3 centre = s.center + sphere_displacement(i, u);

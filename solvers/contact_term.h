@@ -49,12 +49,10 @@ class ContactTerm {
   Index dof_count() const { return dim_ * sphere_count(); }
   /// Reference position of sphere i's centre (m).
   const Vec3& centre(Index sphere) const { return spheres_[sphere].center; }
-  /// Contact points of sphere i (for tests).
-  const std::vector<SurfacePoint>& contact_points(Index sphere) const { return spheres_[sphere].points; }
 
   void visit_couplings(const CouplingVisitor& visit) const;
   /// The contact forces at u added into f (N, over all dofs), and their
-  /// tangent into *sink when given.
+  /// tangent into *sink when given. Not reentrant (kept scratch: every explicit step calls it).
   void add(const Vector& u, Vector& f, const BlockSink* sink) const;
   /// Augmented Lagrangian update at a converged static u under load factor
   /// `load`: true when a constraint is still violated beyond its tolerance, so
@@ -108,6 +106,8 @@ class ContactTerm {
   int dim_;
   bool explicit_ = false;
   bool static_ = false;  // a static run: the force scales with the load factor
+  mutable std::vector<Index> dofs_;           // add()'s scratch: one point's dofs,
+  mutable std::vector<double> beta_, block_;  // its coefficients and tangent block
 };
 
 }  // namespace kerf

@@ -182,7 +182,7 @@ class DynamicImplicitStepper : public Stepper {
     return a;
   }
 
-  MechanicalSystem& mechanics_;
+  const MechanicalSystem& mechanics_;
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;

@@ -26,10 +26,20 @@ void MechanicalSystem::visit_couplings(const CouplingVisitor& visit) const {
   if (contact_) contact_->visit_couplings(visit);
 }
 
+const Vector& MechanicalSystem::body_part(const Vector& x, Vector& buffer) const {
+  if (!contact_) return x;
+  buffer = x.head(body_dofs_);
+  return buffer;
+}
+
+double MechanicalSystem::strain_energy(const Vector& u) const {
+  Vector buffer;
+  return body_.strain_energy(body_part(u, buffer));
+}
+
 void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
   if (!contact_) return body_.internal_force(u, f);
-  body_u_ = body_part(u);
-  body_.internal_force(body_u_, body_f_);
+  body_.internal_force(body_part(u, body_u_), body_f_);
   f.resize(dof_count());
   f.head(body_dofs_) = body_f_;
   f.tail(dof_count() - body_dofs_).setZero();
@@ -38,8 +48,8 @@ void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
 
 void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   if (!contact_) return body_.tangent(u, sink, f);
-  Vector body_f;
-  body_.tangent(body_part(u), sink, &body_f);
+  Vector body_u, body_f;
+  body_.tangent(body_part(u, body_u), sink, &body_f);
   Vector all = Vector::Zero(dof_count());
   all.head(body_dofs_) = body_f;
   contact_->add(u, all, &sink);
@@ -65,10 +75,10 @@ void MechanicalSystem::consistent_mass(const BlockSink& sink) const {
 
 void MechanicalSystem::external_force(double t, Vector& f) const {
   if (!contact_) return body_.external_force(t, f);
-  Vector body_f;
-  body_.external_force(t, body_f);
-  f = Vector::Zero(dof_count());
-  f.head(body_dofs_) = body_f;
+  body_.external_force(t, body_f_);
+  f.resize(dof_count());
+  f.head(body_dofs_) = body_f_;
+  f.tail(dof_count() - body_dofs_).setZero();
   contact_->fill_external_force(f);
 }
 

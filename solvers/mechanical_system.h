@@ -28,8 +28,9 @@ class MechanicalSystem {
   Index dof_count() const { return body_dofs_ + (contact_ ? contact_->dof_count() : 0); }
   /// Reference position of the node a dof belongs to (a sphere's centre for its dofs).
   Vec3 dof_position(Index dof) const;
-  /// The body's part of a vector over all dofs (its dofs come first).
-  Vector body_part(const Vector& x) const { return x.head(body_dofs_); }
+  /// The body's part of a vector over all dofs (its dofs come first): x
+  /// itself without terms, else copied into `buffer` (no allocation once sized).
+  const Vector& body_part(const Vector& x, Vector& buffer) const;
 
   void visit_couplings(const CouplingVisitor& visit) const;
   /// f_int(u) of the body and the terms (N). Not reentrant (kept buffers).
@@ -43,7 +44,7 @@ class MechanicalSystem {
   /// The terms' forces added into f, their tangent into *sink when given.
   void add_terms(const Vector& u, Vector& f, const BlockSink* sink) const;
   /// The body's strain energy (J; a contact penalty's is not counted).
-  double strain_energy(const Vector& u) const { return body_.strain_energy(body_part(u)); }
+  double strain_energy(const Vector& u) const;
 
   Vector lumped_mass() const;
   void consistent_mass(const BlockSink& sink) const;
@@ -54,7 +55,7 @@ class MechanicalSystem {
   const DiscreteBody& body_;
   Index body_dofs_;
   std::unique_ptr<ContactTerm> contact_;
-  mutable Vector body_u_, body_f_;  // internal_force's buffers (every explicit step)
+  mutable Vector body_u_, body_f_;  // buffers of the calls made every step (internal and external force)
 };
 
 /// The pattern of every block the system will write (the body's and the terms').
