@@ -31,7 +31,6 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
     const double k = t.stiffness[s] *= c * mu * nodes.volume[I] / normaliser;
     const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
     for (int i = 0; i < dim; ++i) {
-      t.lever[dim * s + i] = k * X[i];
       t.lever_sum[3 * I + i] += k * X[i];
       for (int l = 0; l < dim; ++l) t.lever_moment[9 * I + 3 * i + l] += k * X[i] * X[l];
     }
@@ -47,12 +46,13 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
   const NodeSet& nodes = domain_.nodes();
   if (stabilized_) {
     const std::size_t slots = domain_.at_nodes().neighbours.index.size();
-    pairs_ = {std::vector<double>(slots, 0.0), std::vector<double>(nodes.dimension * slots, 0.0),
-              std::vector<double>(3 * nodes.size(), 0.0), std::vector<double>(9 * nodes.size(), 0.0)};
+    pairs_ = {std::vector<double>(slots, 0.0), std::vector<double>(3 * nodes.size(), 0.0),
+              std::vector<double>(9 * nodes.size(), 0.0)};
     for (Index I = 0; I < nodes.size(); ++I)
       pair_row(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu, I, pairs_);
   }
   const int dim = domain_.dimension();
+  if (dim == 3) position4_ = padded_positions(nodes.positions);
   load_ = Vector::Zero(dof_count());
   for (Index I = 0; I < nodes.size(); ++I)
     for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
@@ -89,8 +89,8 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   const Index* start = table.neighbours.start.data();
   const Index* index = table.neighbours.index.data();
   const double* g = table.gradient.data();
-  const double* c = pairs_.lever.data();
   const double* k = pairs_.stiffness.data();
+  const Vec3* x = nodes.positions.data();
   f.resize(dofs);
 #pragma omp parallel
   {
@@ -108,14 +108,19 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
       // Plain scalar accumulators: Eigen's fixed matrices here end up on the
       // stack, and the loop then waits on store-to-load forwarding.
       // h = grad u at x_I; d = sum_K u_K (k_IK X_IK)^T for the stabilisation.
+      // The levers k_IK X_IK are formed from the positions (cached: a node's
+      // neighbours are near it in memory) rather than read from a table.
       double h[Dim][Dim] = {}, d[Dim][Dim] = {};
+      const Vec3& xI = x[I];
       for (Index s = s0; s < s1; ++s) {
-        const double* uK = &u[Dim * index[s]];
+        const Index K = index[s];
+        const double* uK = &u[Dim * K];
         const double* gs = g + Dim * s;
         for (int i = 0; i < Dim; ++i)
           for (int l = 0; l < Dim; ++l) h[i][l] += uK[i] * gs[l];
         if constexpr (Stabilized) {
-          const double* cs = c + Dim * s;
+          double cs[Dim];
+          for (int l = 0; l < Dim; ++l) cs[l] = k[s] * (x[K][l] - xI[l]);
           for (int i = 0; i < Dim; ++i)
             for (int l = 0; l < Dim; ++l) d[i][l] += uK[i] * cs[l];
         }
@@ -149,8 +154,10 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
         }
         if constexpr (Stabilized) {
           // k_IK e_IK = k_IK (u_K - u_I) - H_I (k_IK X_IK): pulls K, pushes I.
-          const double* uK = &u[Dim * index[s]];
-          const double* cs = c + Dim * s;
+          const Index K = index[s];
+          const double* uK = &u[Dim * K];
+          double cs[Dim];
+          for (int l = 0; l < Dim; ++l) cs[l] = k[s] * (x[K][l] - xI[l]);
           for (int i = 0; i < Dim; ++i) {
             double e = k[s] * (uK[i] - uI[i]);
             for (int l = 0; l < Dim; ++l) e -= h[i][l] * cs[l];
@@ -171,13 +178,41 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   }
 }
 
+std::size_t NodalBody::force_pass_bytes() const {
+  const ShapeTable& table = domain_.at_nodes();
+  const std::size_t dim = domain_.dimension(), slots = table.neighbours.index.size(), N = node_count();
+  const std::size_t threads = static_cast<std::size_t>(omp_get_max_threads());
+  std::size_t bytes = slots * (sizeof(Index) + dim * sizeof(double)) + N * (sizeof(Index) + sizeof(double));
+  if (stabilized_)
+    bytes += slots * sizeof(double) + N * sizeof(double) * (12 + 3);  // k; sums, moments, positions
+  // u read, each thread's forces zeroed, scattered into and summed, f written
+  return bytes + N * dim * sizeof(double) * (2 + 2 * threads);
+}
+
+NodalForceTables NodalBody::force_tables() const {
+  const ShapeTable& table = domain_.at_nodes();
+  NodalForceTables t;
+  t.nodes = node_count();
+  t.start = table.neighbours.start.data();
+  t.index = table.neighbours.index.data();
+  t.slots = static_cast<Index>(table.neighbours.index.size());
+  t.gradient = table.gradient.data();
+  t.volume = domain_.nodes().volume.data();
+  t.position4 = aligned_32(position4_);
+  if (stabilized_) {
+    t.stiffness = pairs_.stiffness.data();
+    t.lever_sum = pairs_.lever_sum.data();
+    t.lever_moment = pairs_.lever_moment.data();
+  }
+  return t;
+}
+
 void NodalBody::internal_force(const Vector& u, Vector& f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  const bool two = domain_.dimension() == 2;
-  if (stabilized_)
-    two ? force_kernel<2, true>(u, f) : force_kernel<3, true>(u, f);
+  if (domain_.dimension() == 3)
+    nodal_force_3d(force_tables(), law_, u, f, scratch_);
   else
-    two ? force_kernel<2, false>(u, f) : force_kernel<3, false>(u, f);
+    stabilized_ ? force_kernel<2, true>(u, f) : force_kernel<2, false>(u, f);
 }
 
 double NodalBody::energies(const Vector& u, double* stabilization) const {

@@ -11,16 +11,18 @@
 #include <vector>
 
 #include "discretization/meshless/meshless_body.h"
+#include "discretization/meshless/nodal_force_kernel.h"
 #include "problem/material.h"
 
 namespace kerf {
 
-/// The stabilisation's per-slot stiffness k_IJ (N/m; 0 for J = I) and lever
-/// k_IJ X_IJ (dim entries, N), X_IJ = x_J - x_I, and per node sum_J k_IJ X_IJ
-/// (3 entries, N) and sum_J k_IJ X_IJ X_IJ^T (3 x 3 row-major, N m). Slots are
-/// those of the domain's at_nodes() table.
+/// The stabilisation's per-slot stiffness k_IJ (N/m; 0 for J = I), and per
+/// node sum_J k_IJ X_IJ (3 entries, N) and sum_J k_IJ X_IJ X_IJ^T (3 x 3
+/// row-major, N m), X_IJ = x_J - x_I. Slots are those of the domain's
+/// at_nodes() table. The levers k_IJ X_IJ are formed where used: a table of
+/// them would double the bytes a force pass reads.
 struct StabilizationPairs {
-  std::vector<double> stiffness, lever, lever_sum, lever_moment;
+  std::vector<double> stiffness, lever_sum, lever_moment;
 };
 
 class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
@@ -46,13 +48,17 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
 
   /// Stabilisation energy alone (J): zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;
+  /// Bytes one internal-force pass streams (tables once, u and each thread's
+  /// force vector once): the pass's floor over a measured bandwidth.
+  std::size_t force_pass_bytes() const;
 
  private:
   /// f_int in one pass over the nodes, each thread scattering into its own
   /// force vector (summed at the end: no atomics; the sum's order depends on
-  /// the thread count only).
+  /// the thread count only). 2D; 3D runs nodal_force_3d on the same tables.
   template <int Dim, bool Stabilized>
   void force_kernel(const Vector& u, Vector& f) const;
+  NodalForceTables force_tables() const;
   /// Strain energy with stabilisation; the stabilisation's part into *stabilization.
   double energies(const Vector& u, double* stabilization) const;
   /// The stabilisation's stiffness on point I's neighbours (scalar per node pair) into `block`.
@@ -62,7 +68,9 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
   StabilizationPairs pairs_;  // empty without the stabilisation
   Scene scene_;               // the loads, integrated again when a growing cut reaches them
   Vector body_load_;          // gravity alone (N)
-  mutable std::vector<double> thread_forces_;
+  mutable std::vector<double> thread_forces_;  // 2D pass
+  std::vector<double> position4_;              // 3D pass: positions 4 to a node (aligned_32)
+  mutable NodalForceScratch scratch_;          // 3D pass
 };
 
 }  // namespace kerf

@@ -4,12 +4,16 @@
 //   build/tests/kerf_benchmarks --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
 #include <benchmark/benchmark.h>
 
+#include <omp.h>
+
 #include <algorithm>
 #include <vector>
 
-#include "core/denormals.h"
-#include "core/openmp_limit.h"
+#include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
+#include "floor_report.h"
+#include "problem/material.h"
+#include "tet4_assembly_floor.h"
 #include "problem/scene_reader.h"
 #include "solvers/linear_solver.h"
 #include "solvers/stepper.h"
@@ -132,22 +136,71 @@ void BM_CholmodFactorization(benchmark::State& state) {
   state.counters["dofs"] = free.free_count();
 }
 
+/// The bare assembly floor of the block at size `level`, with its body and pattern.
+struct FloorSetup {
+  std::unique_ptr<DiscreteBody> body;
+  SparseMatrix K;
+  std::unique_ptr<bench::Tet4AssemblyFloor> floor;
+  explicit FloorSetup(int level) : body(block_body(level)), K(build_pattern(*body)) {
+    const Lame lame = Lame::from_young_poisson(1.0e5, 0.3);
+    floor = std::make_unique<bench::Tet4AssemblyFloor>(capability<MeshedBody>(*body)->mesh(), K, lame.lambda,
+                                                       lame.mu, omp_get_max_threads());
+  }
+};
+
+void BM_StiffnessAssemblyFloor(benchmark::State& state) {
+  FloorSetup setup(state.range(0));
+  Vector u = Vector::Constant(setup.body->dof_count(), 1e-4), f(setup.body->dof_count());
+  for (auto _ : state) setup.floor->assemble(u.data(), setup.K, f.data());
+  benchmark::DoNotOptimize(f.data());
+}
+
+// The least work of one implicit step that solves iteratively with a factor
+// as preconditioner: assemble K and f (the floor above), restrict K to the
+// free dofs, one product with it and one solve with a factor computed once:
+// one preconditioned CG iteration, where kerf takes several.
+void BM_ImplicitStepFloor(benchmark::State& state) {
+  FloorSetup setup(state.range(0));
+  RunReport report;
+  const Index n = setup.body->dof_count();
+  Vector u = Vector::Zero(n), f(n);
+  setup.floor->assemble(u.data(), setup.K, f.data());
+  FreeDofs free(n, setup.body->dirichlet(0.0));
+  free.prepare_matrix(setup.K);
+  free.restrict_values(setup.K);
+  auto solver = make_linear_solver({}, report);
+  solver->analyze(free.restricted());
+  solver->factorize(free.restricted());
+  Vector x = Vector::Zero(free.free_count()), Ax(free.free_count());
+  for (auto _ : state) {
+    setup.floor->assemble(u.data(), setup.K, f.data());
+    free.restrict_values(setup.K);
+    const Vector b = free.restrict_vector(f);
+    Ax.noalias() = free.restricted() * x;
+    solver->solve(b - Ax, x);
+  }
+  benchmark::DoNotOptimize(x.data());
+}
+
 BENCHMARK(BM_ImplicitEulerStepCorotationalCholmod)->DenseRange(0, 2)->Iterations(40)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ImplicitEulerStepCorotationalPetscGamg)->Arg(2)->Iterations(10)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CentralDifferenceStepCorotational)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StiffnessAssemblyCorotational)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElementKernelsCorotational)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CholmodFactorization)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StiffnessAssemblyFloor)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ImplicitStepFloor)->DenseRange(0, 2)->Iterations(40)->Unit(benchmark::kMillisecond);
+
+const bool paired =
+    (bench::pair_with_floor("BM_ImplicitEulerStepCorotationalCholmod/2", "BM_ImplicitStepFloor/2",
+                            "bare linear tet4 assembly + one CG iteration with a fixed CHOLMOD factor"),
+     bench::pair_with_floor("BM_ImplicitEulerStepCorotationalPetscGamg/2", "BM_ImplicitStepFloor/2",
+                            "bare linear tet4 assembly + one CG iteration with a fixed CHOLMOD factor"),
+     bench::pair_with_floor("BM_StiffnessAssemblyCorotational/2", "BM_StiffnessAssemblyFloor/2",
+                            "bare LINEAR tet4 K_e, f_e through a slot table"),
+     bench::pair_with_floor("BM_ElementKernelsCorotational/2", "BM_StiffnessAssemblyFloor/2",
+                            "bare LINEAR tet4 K_e, f_e through a slot table"),
+     true);
 
 }  // namespace
 }  // namespace kerf
-
-int main(int argc, char** argv) {
-  kerf::limit_openmp_threads_to_cores(argv);
-  kerf::flush_denormals_to_zero();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}

@@ -12,6 +12,10 @@
 
 #include "core/timer.h"
 #include "discretization/body_factory.h"
+#include "discretization/meshless/nodal_body.h"
+#include "problem/material.h"
+#include "floor_report.h"
+#include "nodal_floor.h"
 #include "problem/scene_reader.h"
 #include "solvers/stepper.h"
 
@@ -62,6 +66,47 @@ void BM_NodalExplicitStep(benchmark::State& state) {
   state.counters["nodes"] = body->node_count();
   state.counters["neighbors_mean"] = body->mean_neighbors();
   state.counters["critical_dt_ms"] = 1e3 * report.solver.critical_dt_s.value();
+  state.counters["bytes_per_step"] = static_cast<double>(dynamic_cast<const NodalBody&>(*body).force_pass_bytes());
+}
+
+// The floor of the step above (nodal_floor.h) on the same body's tables, plus
+// the central-difference update it needs (v += dt M^-1 (f_ext - f_int), u += dt v),
+// on vectors 4 to a node. Argument: stabilisation on (1) or off (0).
+void BM_NodalStepFloor(benchmark::State& state) {
+  if (!bench::nodal_floor_supported()) return state.SkipWithError("the floor needs AVX2 and FMA");
+  const bool stabilized = state.range(0) != 0;
+  Scene scene = nodal_block(stabilized, "linear");
+  RunReport report;
+  auto body = make_body(scene, report);
+  const auto& nodal = dynamic_cast<const NodalBody&>(*body);
+  const ShapeTable& table = nodal.domain().at_nodes();
+  const NodeSet& nodes = nodal.domain().nodes();
+  const Lame lame = Lame::from_young_poisson(scene.material.young, scene.material.poisson);
+  // Any positive k costs the same; this one has the stabilisation's scale.
+  std::vector<double> stiffness(table.neighbours.index.size(), 0.1 * lame.mu * nodes.volume[0] / 1e-4);
+  const std::vector<double> positions = padded_positions(nodes.positions);
+  bench::NodalFloorData data{table.neighbours.start, table.neighbours.index, table.gradient, stiffness,
+                             aligned_32(positions), nodes.volume, lame.lambda, lame.mu};
+  const Index N = body->node_count();
+  const Vector mass = body->lumped_mass();
+  Vector load;
+  body->external_force(0.0, load);
+  std::vector<double> m4(4 * N + 4, 1.0), load4(4 * N + 4, 0.0), u(4 * N + 4, 0.0), v(4 * N + 4, 0.0),
+      f(4 * N + 4, 0.0), scratch;
+  for (Index n = 0; n < N; ++n)
+    for (int i = 0; i < 3; ++i) m4[4 * n + i] = mass[3 * n + i], load4[4 * n + i] = load[3 * n + i];
+  double* u4 = const_cast<double*>(aligned_32(u));
+  double* f4 = const_cast<double*>(aligned_32(f));
+  const double dt = scene.solve.dt;
+  for (auto _ : state) {
+    bench::nodal_floor_force(data, stabilized, u4, f4, scratch);
+#pragma omp parallel for schedule(static)
+    for (Index j = 0; j < 4 * N; ++j) {
+      v[j] += dt * (load4[j] - f4[j]) / m4[j];
+      u4[j] += dt * v[j];
+    }
+  }
+  benchmark::DoNotOptimize(u4);
 }
 
 // Setup of the body alone: lattice, Delaunay volumes, k-d tree, neighbour
@@ -82,7 +127,18 @@ void BM_NodalSetup(benchmark::State& state) {
 }
 
 BENCHMARK(BM_NodalExplicitStep)->Args({1, 0})->Args({0, 0})->Args({1, 1})->Args({0, 1})->Iterations(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NodalStepFloor)->Arg(1)->Arg(0)->Iterations(2000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NodalSetup)->Iterations(3)->Unit(benchmark::kMillisecond);
+
+const bool paired = (bench::pair_with_floor("BM_NodalExplicitStep/1/0", "BM_NodalStepFloor/1",
+                                            "bare linear stabilised pass on the same tables + update"),
+                     bench::pair_with_floor("BM_NodalExplicitStep/0/0", "BM_NodalStepFloor/0",
+                                            "bare linear pass on the same tables + update"),
+                     bench::pair_with_floor("BM_NodalExplicitStep/1/1", "BM_NodalStepFloor/1",
+                                            "bare LINEAR stabilised pass (no rotation) + update"),
+                     bench::pair_with_floor("BM_NodalExplicitStep/0/1", "BM_NodalStepFloor/0",
+                                            "bare LINEAR pass (no rotation) + update"),
+                     true);
 
 }  // namespace
 }  // namespace kerf
