@@ -11,6 +11,7 @@
 //   DiscretizationFigures  efg, nodal        MLS conditioning for the summary
 //   ElementStepBound       fem               a cheap safe explicit step
 //   MeshedBody             fem               the mesh a state is carried onto
+//   MatrixAssembly         fem               K written straight into a CSR matrix
 #include <map>
 #include <string>
 #include <vector>
@@ -93,6 +94,24 @@ class MeshedBody {
  public:
   virtual ~MeshedBody() = default;
   virtual const Mesh& mesh() const = 0;
+};
+
+/// A row-major CSR matrix's arrays (full symmetric storage), as a body sees them.
+struct CsrView {
+  Index rows = 0;
+  const Index* outer = nullptr;  // rows + 1
+  const Index* inner = nullptr;  // column of each value, sorted within a row
+  double* values = nullptr;
+};
+
+class MatrixAssembly {
+ public:
+  virtual ~MatrixAssembly() = default;
+  /// The same as tangent(u, add_into(matrix), f), each block's places in the
+  /// matrix taken from a table built once per pattern instead of searched:
+  /// `matrix` holds every block tangent() writes, and a pattern once seen
+  /// must not change in place.
+  virtual void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const = 0;
 };
 
 /// The body's capability C, or null.

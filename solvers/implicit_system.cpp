@@ -101,7 +101,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
   if (mechanics_.is_linear()) {
     if (!stiffness_assembled_) {
       report_.add_stage("stiffness");
-      mechanics_.tangent(u, add_into(stiffness_), nullptr);
+      mechanics_.tangent_into(u, stiffness_, nullptr);
       stiffness_assembled_ = true;
       stiffness_changed_ = true;
     }
@@ -114,7 +114,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
   }
   report_.add_stage("stiffness");
   std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
-  mechanics_.tangent(u, add_into(stiffness_), &f);
+  mechanics_.tangent_into(u, stiffness_, &f);
   stiffness_assembled_ = true;
   stiffness_changed_ = true;
 }

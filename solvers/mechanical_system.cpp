@@ -47,9 +47,23 @@ void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
 }
 
 void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
-  if (!contact_) return body_.tangent(u, sink, f);
+  tangent_with([&](const Vector& body_u, Vector* body_f) { body_.tangent(body_u, sink, body_f); }, u, sink, f);
+}
+
+void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const {
+  const BlockSink sink = add_into(K);
+  const MatrixAssembly* direct = capability<MatrixAssembly>(body_);
+  if (!direct) return tangent(u, sink, f);
+  const CsrView view = csr_view(K);
+  tangent_with([&](const Vector& body_u, Vector* body_f) { direct->add_tangent_into(body_u, view, body_f); }, u,
+               sink, f);
+}
+
+void MechanicalSystem::tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink,
+                                    Vector* f) const {
+  if (!contact_) return body_tangent(u, f);
   Vector body_u, body_f;
-  body_.tangent(body_part(u, body_u), sink, &body_f);
+  body_tangent(body_part(u, body_u), &body_f);
   Vector all = Vector::Zero(dof_count());
   all.head(body_dofs_) = body_f;
   contact_->add(u, all, &sink);

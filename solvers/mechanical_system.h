@@ -36,6 +36,9 @@ class MechanicalSystem {
   /// f_int(u) of the body and the terms (N). Not reentrant (kept buffers).
   void internal_force(const Vector& u, Vector& f) const;
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const;
+  /// The same added into K (whose pattern is build_pattern's), the body's part
+  /// straight into K's arrays when it can (MatrixAssembly).
+  void tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const;
   /// Linear in u: a linear body without contact.
   bool is_linear() const { return body_.is_linear() && !contact_; }
   /// A linear body with contact: its stiffness may be assembled once
@@ -52,6 +55,11 @@ class MechanicalSystem {
   std::vector<DirichletDof> dirichlet(double t) const;
 
  private:
+  /// The body's tangent at its part of u (and its force into *f when given).
+  using BodyTangent = std::function<void(const Vector& body_u, Vector* body_f)>;
+  /// The body's tangent, then the terms' (into `sink`); f over all dofs.
+  void tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink, Vector* f) const;
+
   const DiscreteBody& body_;
   Index body_dofs_;
   std::unique_ptr<ContactTerm> contact_;

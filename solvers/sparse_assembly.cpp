@@ -49,6 +49,11 @@ SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const Coup
   return m;
 }
 
+CsrView csr_view(SparseMatrix& matrix) {
+  KERF_CHECK(matrix.isCompressed(), "internal: a matrix written through its arrays must be compressed");
+  return {static_cast<Index>(matrix.rows()), matrix.outerIndexPtr(), matrix.innerIndexPtr(), matrix.valuePtr()};
+}
+
 BlockSink add_into(SparseMatrix& matrix, double scale) {
   const Index* outer = matrix.outerIndexPtr();
   const Index* inner = matrix.innerIndexPtr();

@@ -4,7 +4,7 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "discretization/discrete_body.h"
+#include "discretization/body_capabilities.h"
 
 namespace kerf {
 
@@ -18,6 +18,9 @@ SparseMatrix build_pattern(int dofs_per_node, Index n,
 
 /// A sink adding scale * block into `matrix` (whose pattern holds the block); thread-safe.
 BlockSink add_into(SparseMatrix& matrix, double scale = 1.0);
+
+/// The matrix's arrays as a body writes into them (MatrixAssembly).
+CsrView csr_view(SparseMatrix& matrix);
 
 /// Positions of the diagonal entries in matrix.valuePtr().
 std::vector<Index> diagonal_positions(const SparseMatrix& matrix);

@@ -171,6 +171,54 @@ void FemBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   loop(u, &forward, f, nullptr);
 }
 
+const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
+  if (m.rows == offsets_pattern_.rows && m.outer == offsets_pattern_.outer && m.inner == offsets_pattern_.inner &&
+      !pair_offsets_.empty())
+    return pair_offsets_;
+  const int dpn = mesh_.dimension;
+  pair_offsets_.resize(static_cast<std::size_t>(mesh_.cell_count()) * npc_ * npc_);
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+    auto nodes = mesh_.cell(c);
+    for (int a = 0; a < npc_; ++a) {
+      const Index row = dpn * nodes[a];
+      KERF_CHECK(row < m.rows, "internal: cell ", c, " writes row ", row, " of a ", m.rows, "-row matrix");
+      const Index* begin = m.inner + m.outer[row];
+      const Index* end = m.inner + m.outer[row + 1];
+      for (int b = 0; b < npc_; ++b) {
+        const Index* at = std::lower_bound(begin, end, dpn * nodes[b]);
+        const Index offset = static_cast<Index>(at - begin);
+        // The same offset serves the node's other rows: their patterns must agree.
+        for (int i = 0; i < dpn; ++i)
+          for (int k = 0; k < dpn; ++k) {
+            const Index p = m.outer[row + i] + offset + k;
+            KERF_CHECK(p < m.outer[row + i + 1] && m.inner[p] == dpn * nodes[b] + k,
+                       "internal: the matrix's pattern lacks cell ", c, "'s block (", a, ", ", b, ")");
+          }
+        pair_offsets_[(static_cast<std::size_t>(c) * npc_ + a) * npc_ + b] = offset;
+      }
+    }
+  }
+  offsets_pattern_ = m;
+  return pair_offsets_;
+}
+
+void FemBody::add_tangent_into(const Vector& u, const CsrView& m, Vector* f) const {
+  const std::vector<Index>& offsets = pair_offsets(m);
+  const int dpn = mesh_.dimension, npc = npc_, n = dpn * npc;
+  // Cells of one phase share no node, hence no row: no two threads add to one value.
+  ElementSink write = [&](Index c, std::span<const Index> dofs, std::span<const double> block) {
+    const Index* off = &offsets[static_cast<std::size_t>(c) * npc * npc];
+    for (int a = 0; a < npc; ++a)
+      for (int i = 0; i < dpn; ++i) {
+        double* row = m.values + m.outer[dofs[dpn * a + i]];
+        const double* from = &block[(dpn * a + i) * n];
+        for (int b = 0; b < npc; ++b)
+          for (int k = 0; k < dpn; ++k) row[off[a * npc + b] + k] += from[dpn * b + k];
+      }
+  };
+  loop(u, &write, f, nullptr);
+}
+
 double FemBody::strain_energy(const Vector& u) const {
   double e = 0.0;
   loop(u, nullptr, nullptr, &e);

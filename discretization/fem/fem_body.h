@@ -15,7 +15,11 @@
 
 namespace kerf {
 
-class FemBody final : public DiscreteBody, public SurfaceSampling, public ElementStepBound, public MeshedBody {
+class FemBody final : public DiscreteBody,
+                      public SurfaceSampling,
+                      public ElementStepBound,
+                      public MeshedBody,
+                      public MatrixAssembly {
  public:
   /// Builds loads and constraints from the scene; throws on a selection that takes nothing.
   FemBody(const Scene& scene, Mesh mesh);
@@ -46,6 +50,7 @@ class FemBody final : public DiscreteBody, public SurfaceSampling, public Elemen
   /// stiffness over its lumped mass).
   double critical_time_step() const override;
   const Mesh& mesh() const override { return mesh_; }
+  void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
 
  private:
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
@@ -55,6 +60,9 @@ class FemBody final : public DiscreteBody, public SurfaceSampling, public Elemen
   void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
   /// Element mass matrix (npc x npc, scalar: multiply by the identity per component).
   Eigen::MatrixXd element_scalar_mass(Index c) const;
+  /// Each cell's node pairs (a, b): where column dpn node_b starts in row
+  /// dpn node_a, from the row's start; built for one pattern, kept for the next call.
+  const std::vector<Index>& pair_offsets(const CsrView& matrix) const;
   void build_loads(const Scene& scene);
   void build_constraints(const Scene& scene);
 
@@ -68,6 +76,8 @@ class FemBody final : public DiscreteBody, public SurfaceSampling, public Elemen
   double domain_size_;
   int npc_;                    // nodes per cell
   int nqp_;                    // stiffness quadrature points per cell
+  mutable std::vector<Index> pair_offsets_;        // npc^2 per cell
+  mutable CsrView offsets_pattern_;                // the pattern pair_offsets_ was built for
   std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
   std::vector<double> wdet_;   // C * nqp: weight * det J (m^3, or m^2 in 2D)
   QuadratureRule mass_rule_;   // exact for N_a N_b

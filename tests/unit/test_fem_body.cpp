@@ -128,6 +128,32 @@ TEST_P(FemElementTest, TangentMatchesFiniteDifferencesForEveryMaterial) {
   }
 }
 
+TEST_P(FemElementTest, DirectAssemblyWritesWhatTheSinkWrites) {
+  FemBody body = make_body(MaterialModel::corotational, 0.4);
+  std::srand(5);
+  const Vector u = 0.05 * Vector::Random(body.dof_count());
+  SparseMatrix through_sink = build_pattern(body), direct = build_pattern(body);
+  Vector f_sink, f_direct;
+  body.tangent(u, add_into(through_sink), &f_sink);
+  body.add_tangent_into(u, csr_view(direct), &f_direct);
+  // The same values added in the same order: equal to the last bit.
+  EXPECT_EQ((through_sink - direct).norm(), 0.0);
+  EXPECT_GT(direct.norm(), 0.0);
+  EXPECT_EQ((f_sink - f_direct).norm(), 0.0);
+  // A second matrix of another pattern (more columns) gets its own places.
+  ASSERT_GT(build_pattern(body).nonZeros(), 0);
+  SparseMatrix wider = build_pattern(body.dofs_per_node(), body.dof_count(), [&](const CouplingVisitor& visit) {
+    body.visit_couplings(visit);
+    const int dpn = body.dofs_per_node();
+    std::vector<Index> first_and_last;  // two nodes far apart: a coupling no cell has
+    for (Index node : {Index{0}, body.node_count() - 1})
+      for (int i = 0; i < dpn; ++i) first_and_last.push_back(dpn * node + i);
+    visit(first_and_last);
+  });
+  body.add_tangent_into(u, csr_view(wider), nullptr);
+  EXPECT_EQ((Eigen::MatrixXd(wider) - Eigen::MatrixXd(through_sink)).norm(), 0.0);
+}
+
 TEST_P(FemElementTest, MassesAddUpToTheBodyMass) {
   FemBody body = make_body();
   const int dim = GetParam().dim;
