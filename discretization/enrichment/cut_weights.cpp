@@ -41,6 +41,16 @@ WeightFactor CutWeights::factor(Index node, const Vec3& x) const {
   return g;
 }
 
+void CutWeights::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
+  std::fill(out.begin(), out.end(), WeightFactor{});
+  std::vector<WeightFactor> part_factors(nodes.size());
+  for (const Part& p : parts_) {
+    if (!p.rule) continue;
+    p.rule->factors(nodes, x, part_factors);
+    for (std::size_t k = 0; k < nodes.size(); ++k) out[k] = out[k] * part_factors[k];  // 1 where not enriched
+  }
+}
+
 std::vector<Index> CutWeights::reached_by(const CutSurface& surface, Index first, Index last) const {
   std::vector<Index> out, candidates;
   for (Index k = first; k < last; ++k) {

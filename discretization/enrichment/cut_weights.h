@@ -30,6 +30,8 @@ class CutWeights final : public EnrichmentRule {
   bool present() const;
   bool enriches(Index node) const override;
   WeightFactor factor(Index node, const Vec3& x) const override;
+  /// Each cut's rule asked once for all the nodes, their factors multiplied as factor() does.
+  void factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const override;
 
   /// Brings the cuts to time t (never earlier than before); returns the nodes
   /// whose g_I changed, sorted and unique (empty when no piece appeared).

@@ -14,11 +14,44 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       frame_(common_frame(cut, 0, pieces)),
       dim_(cut.dimension),
       anchor_(cut.vertices.front()) {
-  KERF_CHECK(pieces > 0 && pieces <= cut.piece_count() && spacing > 0.0, "an Enrichment Grid needs pieces and a spacing");
+  size_lattice(padding);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c) columns_[c] = column_at(column_point(c));
+}
+
+EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding,
+                               const EnrichmentGrid& before)
+    : cut_(&cut),
+      pieces_(pieces),
+      spacing_(spacing),
+      frame_(common_frame(cut, 0, pieces)),
+      dim_(cut.dimension),
+      anchor_(cut.vertices.front()) {
+  size_lattice(padding);
+  const bool grows = dim_ == 3 && before.cut_ == cut_ && before.pieces_ < pieces_ && same_lattice(before);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c) {
+    const Vec3 x = column_point(c);
+    const Index old = grows ? column_in(before, c) : -1;
+    if (old < 0) {
+      columns_[c] = column_at(x);
+      continue;
+    }
+    columns_[c] = before.columns_[old];
+    if (columns_[c].d_plus == 0.0) continue;  // over an earlier piece: it wins
+    const CutRegion added = cut_region(cut, before.pieces_, pieces_, frame_, x);
+    if (added.d_plus < columns_[c].d_plus) columns_[c] = column_of(added, x);
+  }
+}
+
+void EnrichmentGrid::size_lattice(double padding) {
+  const CutSurface& cut = *cut_;
+  KERF_CHECK(pieces_ > 0 && pieces_ <= cut.piece_count() && spacing_ > 0.0,
+             "an Enrichment Grid needs pieces and a spacing");
   axes_ = dim_ == 2 ? std::array<Vec3, 3>{frame_.axis[0], frame_.normal, Vec3::UnitZ()}
                     : std::array<Vec3, 3>{frame_.axis[0], frame_.axis[1], frame_.normal};
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
-  for (Index k = 0; k < pieces; ++k)
+  for (Index k = 0; k < pieces_; ++k)
     for (int c = 0; c < dim_; ++c) {
       const Vec3 q = coordinates(cut.pieces[k].corner[c]);
       low = low.cwiseMin(q), high = high.cwiseMax(q);
@@ -27,18 +60,28 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
   std::array<double, 3> per_axis{1.0, 1.0, 1.0};
   for (int a = 0; a < dim_; ++a) {
     // Whole cells from the anchor: a cut that grows without turning keeps its lattice points.
-    low_[a] = std::floor((low[a] - padding) / spacing) * spacing;
-    per_axis[a] = std::ceil((high[a] + padding - low_[a]) / spacing) + 1.0;
+    low_[a] = std::floor((low[a] - padding) / spacing_) * spacing_;
+    per_axis[a] = std::ceil((high[a] + padding - low_[a]) / spacing_) + 1.0;
     points *= per_axis[a];
   }
-  KERF_CHECK(points <= max_points, cut.where, ": key 'grid.spacing': value ", spacing, " m gives an Enrichment Grid of ",
-             points, " points around the cut (padding ", padding, " m, twice the largest support radius); expected at most ",
-             max_points, ": a larger spacing");
+  KERF_CHECK(points <= max_points, cut.where, ": key 'grid.spacing': value ", spacing_,
+             " m gives an Enrichment Grid of ", points, " points around the cut (padding ", padding,
+             " m, twice the largest support radius); expected at most ", max_points, ": a larger spacing");
   for (int a = 0; a < dim_; ++a) count_[a] = static_cast<Index>(per_axis[a]);
-  const Index columns = dim_ == 2 ? count_[0] : count_[0] * count_[1];
-  columns_.resize(columns);
-#pragma omp parallel for schedule(static)
-  for (Index c = 0; c < columns; ++c) columns_[c] = column_at(column_point(c));
+  columns_.resize(dim_ == 2 ? count_[0] : count_[0] * count_[1]);
+}
+
+Index EnrichmentGrid::column_in(const EnrichmentGrid& other, Index column) const {
+  Index at = 0, stride = 1;
+  const Index index[2] = {column % count_[0], column / count_[0]};
+  for (int a = 0; a < dim_ - 1; ++a) {
+    // Both lows are whole multiples of the spacing from the same anchor.
+    const Index i = index[a] + static_cast<Index>(std::lround((low_[a] - other.low_[a]) / spacing_));
+    if (i < 0 || i >= other.count_[a]) return -1;
+    at += i * stride;
+    stride *= other.count_[a];
+  }
+  return at;
 }
 
 std::vector<double> EnrichmentGrid::lattice_phi() const {
@@ -78,7 +121,10 @@ Vec3 EnrichmentGrid::lattice_origin() const {
 }
 
 EnrichmentGrid::Column EnrichmentGrid::column_at(const Vec3& x) const {
-  const CutRegion r = cut_region(*cut_, 0, pieces_, frame_, x);
+  return column_of(cut_region(*cut_, 0, pieces_, frame_, x), x);
+}
+
+EnrichmentGrid::Column EnrichmentGrid::column_of(const CutRegion& r, const Vec3& x) {
   return {r.piece, r.d_plus, r.d_plus_gradient, r.s_gradient, r.s_gradient.dot(x) - r.s};
 }
 
@@ -150,10 +196,12 @@ bool EnrichmentGrid::same(const Column& a, const Column& b, const Vec3& base) co
 std::vector<char> EnrichmentGrid::changed_columns(const EnrichmentGrid& before) const {
   const Index columns = static_cast<Index>(columns_.size());
   std::vector<char> changed(columns, 0);
+  const bool same_points = same_lattice(before);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < columns; ++c) {
     const Vec3 base = column_point(c);
-    changed[c] = !same(columns_[c], before.column_at(base), base);
+    const Index old = same_points ? column_in(before, c) : -1;
+    changed[c] = !same(columns_[c], old >= 0 ? before.columns_[old] : before.column_at(base), base);
   }
   // One column of dilation: a change narrower than the spacing still shows.
   std::vector<char> dilated(changed);

@@ -28,6 +28,12 @@ class EnrichmentGrid {
   /// Pieces [0, pieces) of `cut` (pieces > 0); lattice spacing and padding in m.
   /// Refuses (naming the cut) a lattice of more than `max_points` points.
   EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding);
+  /// The same, grown from `before` (the same cut with fewer pieces): in 3D, on
+  /// the same lattice, a column before kept its region unless a new piece
+  /// holds its projection or lies nearer, so only the new pieces are visited
+  /// there (the region of pieces [0, n) is that of [0, k) and [k, n) combined,
+  /// earlier pieces winning ties as in cut_region).
+  EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding, const EnrichmentGrid& before);
 
   static constexpr Index max_points = 20'000'000;
 
@@ -71,6 +77,11 @@ class EnrichmentGrid {
   /// The world point of a column on the common line/plane.
   Vec3 column_point(Index column) const;
   Column column_at(const Vec3& x) const;
+  static Column column_of(const CutRegion& r, const Vec3& x);
+  /// The index in `other` (the same lattice) of this grid's column, or -1 outside it.
+  Index column_in(const EnrichmentGrid& other, Index column) const;
+  /// The lattice extent around pieces [0, pieces) (low_, count_); throws when too fine.
+  void size_lattice(double padding);
   PhiValue phi_in(const Column& c, const Vec3& x) const;
   /// Same phi all along the column through `base` from both?
   bool same(const Column& a, const Column& b, const Vec3& base) const;

@@ -2,6 +2,10 @@
 
 namespace kerf {
 
+void EnrichmentRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
+  for (std::size_t k = 0; k < nodes.size(); ++k) out[k] = enriches(nodes[k]) ? factor(nodes[k], x) : WeightFactor{};
+}
+
 std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
                                 std::span<const double> support) {
   std::vector<char> reached(nodes.size(), 0);

@@ -30,6 +30,10 @@ class EnrichmentRule {
   virtual bool enriches(Index node) const = 0;
   /// g_I(x) and its gradient.
   virtual WeightFactor factor(Index node, const Vec3& x) const = 0;
+  /// The factors of several nodes at one point (out[k] for nodes[k]; 1 for a
+  /// node not enriched), as factor() gives them: rules whose g depends on x
+  /// through one field for all nodes (the grid's phi) look it up once.
+  virtual void factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const;
 };
 
 /// The nodes a cut's first `pieces` pieces reach: distance to the cut below the support radius.

@@ -1,6 +1,7 @@
 #include "discretization/enrichment/grid_rule.h"
 
 #include <algorithm>
+#include <optional>
 
 namespace kerf {
 
@@ -35,9 +36,22 @@ WeightFactor GridRule::factor(Index node, const Vec3& x) const {
   return {0.5 * (1.0 + side_[node] * p.value), 0.5 * side_[node] * p.gradient};
 }
 
+void GridRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
+  std::optional<PhiValue> p;  // looked up at the first enriched node
+  for (std::size_t k = 0; k < nodes.size(); ++k) {
+    const Index node = nodes[k];
+    if (!enriched_[node]) {
+      out[k] = {};
+      continue;
+    }
+    if (!p) p = phi(x);
+    out[k] = {0.5 * (1.0 + side_[node] * p->value), 0.5 * side_[node] * p->gradient};
+  }
+}
+
 void GridRule::grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed) {
   std::unique_ptr<EnrichmentGrid> before = std::move(grid_);
-  grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_);
+  grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_, *before);
   const std::vector<char> columns = grid_->changed_columns(*before);
   // Interpolating on a lattice that turned with the cut changes phi near the
   // faces everywhere: then every enriched node is updated.

@@ -25,6 +25,8 @@ class GridRule final : public EnrichmentRule {
 
   bool enriches(Index node) const override { return enriched_[node]; }
   WeightFactor factor(Index node, const Vec3& x) const override;
+  /// phi(x) once for all the enriched nodes among `nodes`.
+  void factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const override;
 
   /// The cut grew to `pieces` pieces; `reached`: the nodes whose support
   /// reaches one of the new ones. Appends to `changed` the nodes whose g_I

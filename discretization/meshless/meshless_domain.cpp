@@ -89,11 +89,16 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
   std::vector<Index> changed = enrichment_->advance_to(t);
   if (changed.empty()) return changed;
   // The rows a changed node appears in, from the transposed neighbour lists.
-  const auto& start = at_nodes_.neighbours.start;
-  if (covered_.size() == 0) covered_ = transpose_slots(at_nodes_.neighbours, nodes_.size());
+  if (covered_.size() == 0) {
+    const NeighborLists& lists = at_nodes_.neighbours;
+    covered_ = transpose_slots(lists, nodes_.size());
+    slot_row_.resize(lists.index.size());
+    for (Index p = 0; p < lists.size(); ++p)
+      std::fill(slot_row_.begin() + lists.start[p], slot_row_.begin() + lists.start[p + 1], p);
+  }
   std::vector<char> flag(nodes_.size(), 0);
   for (Index I : changed)
-    for (Index slot : covered_.of(I)) flag[std::upper_bound(start.begin(), start.end(), slot) - start.begin() - 1] = 1;
+    for (Index slot : covered_.of(I)) flag[slot_row_[slot]] = 1;
   std::vector<Index> touched;
   for (Index p = 0; p < nodes_.size(); ++p)
     if (flag[p]) touched.push_back(p);
@@ -101,8 +106,9 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
     smoothing_->set_cuts(*enrichment_, nodes_);
     smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());
   } else {
-    refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node",
-                       error_context_, mls_remedy());
+    // Only the rows whose factors changed: phi moved at their point.
+    touched = refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node",
+                                 error_context_, mls_remedy());
   }
   if (rows) *rows = std::move(touched);
   return changed;

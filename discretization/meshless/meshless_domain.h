@@ -58,7 +58,8 @@ class MeshlessDomain {
   const CutWeights* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
   /// Brings the cuts to time t. Returns the nodes whose enriched weight
   /// changed (sorted; empty when no piece appeared) after recomputing the
-  /// rows of at_nodes() they touch (`rows`, when given, receives those rows).
+  /// rows of at_nodes() they touch whose factors changed (with smoothed
+  /// gradients, every row they touch); `rows`, when given, receives those rows.
   std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr);
   /// Does the support of one of these nodes cover a boundary-load quadrature
   /// point (then the load vector must be integrated again)?
@@ -114,6 +115,7 @@ class MeshlessDomain {
   std::unique_ptr<SmoothedGradients> smoothing_;  // nodal with meshless.gradient: smoothed
   ShapeTable at_nodes_;  // smoothed gradients with smoothing_
   NeighborLists covered_;  // per node: the slots of at_nodes_ holding it (built at the first cut growth)
+  std::vector<Index> slot_row_;  // per slot of at_nodes_: its row (built with covered_)
 };
 
 }  // namespace kerf

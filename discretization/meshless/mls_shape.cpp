@@ -7,13 +7,10 @@
 namespace kerf {
 namespace {
 
-constexpr int max_terms = 10;  // 3D quadratic
-using Column = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, max_terms, 1>;
-using Square = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, max_terms, max_terms>;
-
 /// p(xi) for xi = (y - x) / h: [1, xi_1..xi_dim, (quadratic) xi_i xi_j for i <= j].
-Column basis_at(int dim, MlsBasis basis, const Vec3& xi) {
-  Column p(mls_basis_size(dim, basis));
+template <int M>
+Eigen::Matrix<double, M, 1> basis_at(int dim, MlsBasis basis, const Vec3& xi) {
+  Eigen::Matrix<double, M, 1> p;
   int k = 0;
   p[k++] = 1.0;
   for (int i = 0; i < dim; ++i) p[k++] = xi[i];
@@ -29,13 +26,23 @@ int mls_basis_size(int dim, MlsBasis basis) {
   return 1 + dim + (basis == MlsBasis::quadratic ? dim * (dim + 1) / 2 : 0);
 }
 
+namespace {
+/// w(r) = 1 - 6 r^2 + 8 r^3 - 3 r^4 for r < 1.
+double quartic(double r) { return 1.0 - 6.0 * r * r + 8.0 * r * r * r - 3.0 * r * r * r * r; }
+}  // namespace
+
+double quartic_weight_value(const Vec3& x, const Vec3& node, double radius) {
+  const double r = (x - node).norm() / radius;
+  return r >= 1.0 ? 0.0 : quartic(r);
+}
+
 WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius) {
   WeightValue w;
   const Vec3 s = x - node;
   const double distance = s.norm(), r = distance / radius;
   if (r >= 1.0) return w;
   const double a = 1.0 - r, d2 = radius * radius;
-  w.value = 1.0 - 6.0 * r * r + 8.0 * r * r * r - 3.0 * r * r * r * r;
+  w.value = quartic(r);
   // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
   w.gradient = -12.0 * a * a * s / d2;
   w.hessian = -12.0 / d2 * a * a * Mat3::Identity();
@@ -51,26 +58,33 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
   return mls_shape_functions(dim, basis, x, nodes, w, h, hessians, out);
 }
 
-bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
-                         std::span<const WeightValue> w, double h, bool hessians, MlsShape& out) {
+namespace {
+
+/// The MLS shape functions with an m-term basis known at compile time (m = M):
+/// every moment matrix and solve is fixed-size, nothing is allocated but `out`.
+template <int M>
+bool mls_fixed(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> w,
+               double h, bool hessians, MlsShape& out) {
+  using Column = Eigen::Matrix<double, M, 1>;
+  using Square = Eigen::Matrix<double, M, M>;
   const std::size_t n = nodes.size();
-  const int m = mls_basis_size(dim, basis);
+  constexpr int m = M;
   out.value.assign(n, 0.0);
   out.gradient.assign(n, Vec3::Zero());
   out.hessian.assign(hessians ? n : 0, Mat3::Zero());
   out.condition = std::numeric_limits<double>::infinity();
   if (n == 0) return false;
   // The basis is centred at x and scaled by h, the largest support: A stays O(1).
-  std::vector<Column> p(n);
-  Square A = Square::Zero(m, m);
+  auto p_of = [&](std::size_t I) { return basis_at<M>(dim, basis, (nodes[I] - x) / h); };
+  Square A = Square::Zero();
   Square dA[3], d2A[3][3];
   for (int k = 0; k < dim; ++k) {
-    dA[k] = Square::Zero(m, m);
-    for (int l = 0; l < dim; ++l) d2A[k][l] = Square::Zero(m, m);
+    dA[k] = Square::Zero();
+    for (int l = 0; l < dim; ++l) d2A[k][l] = Square::Zero();
   }
   for (std::size_t I = 0; I < n; ++I) {
-    p[I] = basis_at(dim, basis, (nodes[I] - x) / h);
-    Square ppT = p[I] * p[I].transpose();
+    const Column p = p_of(I);
+    const Square ppT = p * p.transpose();
     A += w[I].value * ppT;
     for (int k = 0; k < dim; ++k) {
       dA[k] += w[I].gradient[k] * ppT;
@@ -87,12 +101,12 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
   };
   // Derivatives of p at the evaluation point (xi = 0): dp/dx_k = e_{1+k} / h;
   // d2p/dx_k dx_l is 1/h^2 (2 on the diagonal) on the quadratic term xi_k xi_l.
-  const Column p0 = basis_at(dim, basis, Vec3::Zero());
+  const Column p0 = basis_at<M>(dim, basis, Vec3::Zero());
   Column dp[3], d2p[3][3];
   for (int k = 0; k < dim; ++k) {
-    dp[k] = Column::Zero(m);
+    dp[k] = Column::Zero();
     dp[k][1 + k] = 1.0 / h;
-    for (int l = 0; l < dim; ++l) d2p[k][l] = Column::Zero(m);
+    for (int l = 0; l < dim; ++l) d2p[k][l] = Column::Zero();
   }
   if (basis == MlsBasis::quadratic) {
     int term = 1 + dim;
@@ -112,20 +126,33 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
       for (int l = 0; l < dim; ++l)
         d2gamma[k][l] = solve(d2p[k][l] - dA[k] * dgamma[l] - dA[l] * dgamma[k] - d2A[k][l] * gamma);
   for (std::size_t I = 0; I < n; ++I) {
-    const double gp = gamma.dot(p[I]);
+    const Column p = p_of(I);
+    const double gp = gamma.dot(p);
     out.value[I] = gp * w[I].value;
     double dgp[3] = {0, 0, 0};
     for (int k = 0; k < dim; ++k) {
-      dgp[k] = dgamma[k].dot(p[I]);
+      dgp[k] = dgamma[k].dot(p);
       out.gradient[I][k] = dgp[k] * w[I].value + gp * w[I].gradient[k];
     }
     if (!hessians) continue;
     for (int k = 0; k < dim; ++k)
       for (int l = 0; l < dim; ++l)
-        out.hessian[I](k, l) = d2gamma[k][l].dot(p[I]) * w[I].value + dgp[k] * w[I].gradient[l] +
+        out.hessian[I](k, l) = d2gamma[k][l].dot(p) * w[I].value + dgp[k] * w[I].gradient[l] +
                                dgp[l] * w[I].gradient[k] + gp * w[I].hessian(k, l);
   }
   return true;
+}
+
+}  // namespace
+
+bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
+                         std::span<const WeightValue> w, double h, bool hessians, MlsShape& out) {
+  switch (mls_basis_size(dim, basis)) {
+    case 3: return mls_fixed<3>(dim, basis, x, nodes, w, h, hessians, out);    // 2D linear
+    case 4: return mls_fixed<4>(dim, basis, x, nodes, w, h, hessians, out);    // 3D linear
+    case 6: return mls_fixed<6>(dim, basis, x, nodes, w, h, hessians, out);    // 2D quadratic
+    default: return mls_fixed<10>(dim, basis, x, nodes, w, h, hessians, out);  // 3D quadratic
+  }
 }
 
 }  // namespace kerf

@@ -20,6 +20,8 @@ struct WeightValue {
   Mat3 hessian = Mat3::Zero();
 };
 WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius);
+/// Its value alone (no derivatives), where only the value is wanted.
+double quartic_weight_value(const Vec3& x, const Vec3& node, double radius);
 
 /// Number of basis terms: 1 + dim (linear), plus dim (dim + 1) / 2 (quadratic).
 int mls_basis_size(int dim, MlsBasis basis);

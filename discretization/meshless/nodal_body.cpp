@@ -19,7 +19,7 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
   const Index s0 = table.neighbours.start[I];
   double normaliser = 0.0;
   for (std::size_t j = 0; j < near.size(); ++j) {
-    double w = quartic_weight(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]).value;
+    double w = quartic_weight_value(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]);
     if (!table.weight_factor.empty()) w *= table.weight_factor[s0 + j];  // no pairs across a cut
     t.stiffness[s0 + j] = near[j] == I ? 0.0 : w;
     normaliser += w * (nodes.positions[near[j]] - nodes.positions[I]).squaredNorm();

@@ -10,37 +10,59 @@ namespace kerf {
 
 namespace {
 
-/// Fills row p of the table (values, gradients, condition, weight factors); false when singular.
-bool fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& point, Index p,
-              const EnrichmentRule* enrichment, PointShapes& scratch) {
+/// Are row p's stored factors those just looked up (values and gradients)?
+bool same_factors(const ShapeTable& t, Index p, const PointShapes& scratch) {
+  const std::size_t s = t.neighbours.start[p];
+  const std::vector<WeightFactor>& g = scratch.factors();
+  for (std::size_t k = 0; k < g.size(); ++k)
+    if (g[k].value != t.weight_factor[s + k] || g[k].gradient != t.weight_factor_gradient[s + k]) return false;
+  return true;
+}
+
+enum class Filled { row, unchanged, singular };
+
+/// Fills row p of the table (values, gradients, condition, weight factors);
+/// with `only_if_changed`, leaves a row whose factors are unchanged as it is.
+Filled fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& point, Index p,
+                const EnrichmentRule* enrichment, bool only_if_changed, PointShapes& scratch) {
   const int dim = t.dimension;
   auto near = t.neighbours.of(p);
   const std::size_t s = t.neighbours.start[p];
-  const bool ok = scratch.evaluate(nodes, basis, point, near, enrichment);
+  scratch.look_up_factors(point, near, enrichment);
+  if (only_if_changed && same_factors(t, p, scratch)) return Filled::unchanged;
+  const bool ok = scratch.evaluate_looked_up(nodes, basis, point, near);
   t.condition[p] = scratch.shape.condition;
   if (!t.weight_factor.empty())
-    std::copy(scratch.weight_factor.begin(), scratch.weight_factor.end(), t.weight_factor.begin() + s);
-  if (!ok) return false;
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      t.weight_factor[s + k] = scratch.factors()[k].value;
+      t.weight_factor_gradient[s + k] = scratch.factors()[k].gradient;
+    }
+  if (!ok) return Filled::singular;
   for (std::size_t k = 0; k < near.size(); ++k) {
     t.value[s + k] = scratch.shape.value[k];
     for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = scratch.shape.gradient[k][i];
   }
-  return true;
+  return Filled::row;
 }
 
-/// Fills the rows `rows(i)`, i < count, in parallel; throws naming the first singular one.
+/// Fills the rows `rows(i)`, i < count, in parallel (with `only_if_changed`,
+/// those whose factors changed; `filled[i]` says which); throws naming the
+/// first singular one.
 template <class Rows>
 void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points, Index count,
-               Rows rows, const EnrichmentRule* enrichment, const std::string& what, const std::string& context,
-               const std::string& remedy) {
+               Rows rows, const EnrichmentRule* enrichment, bool only_if_changed, std::vector<char>& filled,
+               const std::string& what, const std::string& context, const std::string& remedy) {
   Index failed = -1;
+  filled.assign(count, 0);
 #pragma omp parallel
   {
     PointShapes scratch;
-#pragma omp for schedule(dynamic, 64)
+#pragma omp for schedule(dynamic, 16)
     for (Index i = 0; i < count; ++i) {
       const Index p = rows(i);
-      if (fill_row(t, nodes, basis, points[p], p, enrichment, scratch)) continue;
+      const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
+      filled[i] = result != Filled::unchanged;
+      if (result != Filled::singular) continue;
 #pragma omp critical
       if (failed < 0 || p < failed) failed = p;
     }
@@ -65,6 +87,17 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 
 bool PointShapes::evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
                            const EnrichmentRule* enrichment) {
+  look_up_factors(point, near, enrichment);
+  return evaluate_looked_up(nodes, basis, point, near);
+}
+
+void PointShapes::look_up_factors(const Vec3& point, std::span<const Index> near, const EnrichmentRule* enrichment) {
+  factors_.assign(near.size(), WeightFactor{});
+  if (enrichment) enrichment->factors(near, point, factors_);
+}
+
+bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point,
+                                     std::span<const Index> near) {
   x_.clear();
   w_.clear();
   weight_factor.assign(near.size(), 1.0);
@@ -74,9 +107,9 @@ bool PointShapes::evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& poi
     x_.push_back(nodes.positions[I]);
     scale = std::max(scale, nodes.support[I]);
     WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I]);
-    if (enrichment && enrichment->enriches(I)) {
+    const WeightFactor& g = factors_[k];
+    if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
       // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
-      const WeightFactor g = enrichment->factor(I, point);
       wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
       wI.value *= g.value;
       wI.hessian *= g.value;
@@ -98,17 +131,31 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
   t.value.assign(t.neighbours.index.size(), 0.0);
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
   t.condition.assign(P, 0.0);
-  if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
-  fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, what, context, remedy);
+  if (enrichment) {
+    t.weight_factor.assign(t.neighbours.index.size(), 1.0);
+    t.weight_factor_gradient.assign(t.neighbours.index.size(), Vec3::Zero());
+  }
+  std::vector<char> filled;
+  fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, false, filled, what, context, remedy);
   return t;
 }
 
-void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
-                        std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
-                        const std::string& context, const std::string& remedy) {
-  if (table.weight_factor.empty()) table.weight_factor.assign(table.neighbours.index.size(), 1.0);
+std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis,
+                                      std::span<const Vec3> points, std::span<const Index> rows,
+                                      const EnrichmentRule& enrichment, const std::string& what,
+                                      const std::string& context, const std::string& remedy) {
+  const std::size_t slots = table.neighbours.index.size();
+  if (table.weight_factor.empty()) table.weight_factor.assign(slots, 1.0);
+  // Factors stored without their gradients (another builder) cannot be compared: every row is recomputed.
+  const bool comparable = table.weight_factor_gradient.size() == slots;
+  if (!comparable) table.weight_factor_gradient.assign(slots, Vec3::Zero());
+  std::vector<char> filled;
   fill_rows(table, nodes, basis, points, static_cast<Index>(rows.size()), [&](Index i) { return rows[i]; },
-            &enrichment, what, context, remedy);
+            &enrichment, comparable, filled, what, context, remedy);
+  std::vector<Index> recomputed;
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    if (filled[i]) recomputed.push_back(rows[i]);
+  return recomputed;
 }
 
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {

@@ -21,6 +21,7 @@ struct ShapeTable {
   std::vector<double> gradient;   // per (point, neighbour), dimension entries (1/m)
   std::vector<double> condition;  // per point: condition number of the scaled moment matrix
   std::vector<double> weight_factor;  // per (point, neighbour): a cut's g_I (empty without cuts)
+  std::vector<Vec3> weight_factor_gradient;  // per (point, neighbour): grad g_I (1/m; with weight_factor)
   Index point_count() const { return neighbours.size(); }
   const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
   const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }
@@ -35,12 +36,18 @@ class PointShapes {
   /// moment matrix is singular.
   bool evaluate(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
                 const EnrichmentRule* enrichment);
+  /// The factors g_I of `near` at `point` alone (1 where not enriched), into factors().
+  void look_up_factors(const Vec3& point, std::span<const Index> near, const EnrichmentRule* enrichment);
+  /// evaluate() with the factors looked up last.
+  bool evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near);
+  const std::vector<WeightFactor>& factors() const { return factors_; }
   MlsShape shape;
   std::vector<double> weight_factor;
 
  private:
   std::vector<Vec3> x_;
   std::vector<WeightValue> w_;
+  std::vector<WeightFactor> factors_;
 };
 
 /// What a singular moment matrix at `what` [x] is told with: `context` (where
@@ -58,8 +65,10 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
 
 /// Recomputes rows `rows` of a table built by shape_table at `points` (the
 /// same points, same neighbour lists) with the cuts' current enrichment: the
-/// cut grew. Throws like shape_table.
-void refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
+/// cut grew. A row whose factors g_I (values and gradients) are those it was
+/// built with is left as it is. Returns the rows recomputed, in the order
+/// given. Throws like shape_table.
+std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
                         std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
                         const std::string& context, const std::string& remedy);
 

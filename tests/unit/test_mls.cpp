@@ -62,6 +62,7 @@ TEST(QuarticWeight, ValuesAndDerivatives) {
   const double h = 1e-6;
   for (const Vec3& x : {Vec3(0.3, 0.1, 0.4), Vec3(0.15, 0.25, 0.3), Vec3(0.1, 0.2, 0.31)}) {
     WeightValue w = quartic_weight(x, node, 0.5);
+    EXPECT_EQ(quartic_weight_value(x, node, 0.5), w.value);  // the value-only form agrees to the bit
     for (int k = 0; k < 3; ++k) {
       Vec3 e = h * Vec3::Unit(k);
       WeightValue p = quartic_weight(x + e, node, 0.5), m = quartic_weight(x - e, node, 0.5);
