@@ -36,7 +36,7 @@ double quartic_weight_value(const Vec3& x, const Vec3& node, double radius) {
   return r >= 1.0 ? 0.0 : quartic(r);
 }
 
-WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius) {
+WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian) {
   WeightValue w;
   const Vec3 s = x - node;
   const double distance = s.norm(), r = distance / radius;
@@ -45,6 +45,7 @@ WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius) {
   w.value = quartic(r);
   // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
   w.gradient = -12.0 * a * a * s / d2;
+  if (!with_hessian) return w;
   w.hessian = -12.0 / d2 * a * a * Mat3::Identity();
   if (distance > 0.0) w.hessian += 24.0 / d2 * a * s * s.transpose() / (distance * radius);
   return w;

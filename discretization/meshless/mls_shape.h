@@ -19,7 +19,8 @@ struct WeightValue {
   Vec3 gradient = Vec3::Zero();
   Mat3 hessian = Mat3::Zero();
 };
-WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius);
+/// Without `with_hessian`, the Hessian is left zero (shape functions without second derivatives).
+WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian = true);
 /// Its value alone (no derivatives), where only the value is wanted.
 double quartic_weight_value(const Vec3& x, const Vec3& node, double radius);
 

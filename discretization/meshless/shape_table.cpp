@@ -106,13 +106,12 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
     const Index I = near[k];
     x_.push_back(nodes.positions[I]);
     scale = std::max(scale, nodes.support[I]);
-    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I]);
+    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I], false);  // tables hold no Hessians
     const WeightFactor& g = factors_[k];
     if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
       // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
       wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
       wI.value *= g.value;
-      wI.hessian *= g.value;
       weight_factor[k] = g.value;
     }
     w_.push_back(wI);

@@ -22,6 +22,9 @@
 #include "core/timer.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
+#include "discretization/meshless/nodal_body.h"
+#include "floor_report.h"
+#include "mls_rows_floor.h"
 #include "problem/scene_reader.h"
 
 namespace kerf {
@@ -95,6 +98,34 @@ void BM_CutUpdate(benchmark::State& state) {
   state.counters["nodes"] = body->node_count();
 }
 
+// The floor of one update (mls_rows_floor.h): the MLS rows of as many nodes
+// as an interpolated update recomputes (436 a piece, measured), the nodes
+// nearest the blade's front at mid-sweep, with the table's cut factors.
+void BM_CutUpdateFloor(benchmark::State& state) {
+  const Scene scene = cut_block(true, 0.5 * node_spacing);
+  RunReport report;
+  auto body = make_body(scene, report);
+  const auto& nodal = dynamic_cast<const NodalBody&>(*body);
+  const ShapeTable& table = nodal.domain().at_nodes();
+  const NodeSet& nodes = nodal.domain().nodes();
+  std::vector<Index> rows(nodes.size());
+  for (Index n = 0; n < nodes.size(); ++n) rows[n] = n;
+  const Vec3 front(0.05, 0.0503, 0.07);
+  const std::size_t count = static_cast<std::size_t>(state.range(0));
+  std::partial_sort(rows.begin(), rows.begin() + count, rows.end(), [&](Index a, Index b) {
+    return (nodes.positions[a] - front).norm() < (nodes.positions[b] - front).norm();
+  });
+  rows.resize(count);
+  std::vector<double> factor = table.weight_factor;
+  factor.resize(table.neighbours.index.size(), 1.0);
+  const bench::MlsRowsFloorData data{table.neighbours.start, table.neighbours.index, nodes.positions,
+                                     nodes.positions, nodes.support, factor};
+  std::vector<double> value(table.value.size()), gradient(table.gradient.size());
+  for (auto _ : state) bench::mls_rows_floor(data, rows, value, gradient);
+  benchmark::DoNotOptimize(value.data());
+  state.counters["rows"] = static_cast<double>(count);
+}
+
 void BM_FemRemeshUpdate(benchmark::State& state) {
   RunReport report;
   const int last = 2 * blade_positions - 2;
@@ -135,6 +166,13 @@ void BM_FemRemeshUpdate(benchmark::State& state) {
 BENCHMARK(BM_FemRemeshUpdate)->Iterations(44)->Unit(benchmark::kMillisecond);
 
 BENCHMARK(BM_CutUpdate)->Args({0, 5})->Args({1, 5})->Args({0, 10})->Args({1, 10})->Iterations(88)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CutUpdateFloor)->Arg(436)->Unit(benchmark::kMillisecond);
+
+const bool paired = (bench::pair_with_floor("BM_CutUpdate/1/5", "BM_CutUpdateFloor/436",
+                                            "bare linear MLS rows (fixed 4x4) for the rows an update recomputes"),
+                     bench::pair_with_floor("BM_CutUpdate/0/5", "BM_CutUpdateFloor/436",
+                                            "bare linear MLS rows (fixed 4x4) for the rows an update recomputes"),
+                     true);
 
 }  // namespace
 }  // namespace kerf
