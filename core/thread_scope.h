@@ -1,7 +1,8 @@
 #pragma once
 // Runs a library call on one OpenMP thread and restores the thread count after:
-// gmsh's meshers are not deterministic on several threads, and the many small
-// BLAS calls of a supernodal Cholesky run several times slower threaded.
+// gmsh's meshers are not deterministic on several threads; CHOLMOD's analysis
+// and triangular solves stay on one thread (threads were not shown to help
+// them; its numeric factorization does gain and runs threaded).
 #include <dlfcn.h>
 #include <omp.h>
 
