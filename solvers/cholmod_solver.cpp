@@ -26,6 +26,10 @@ class CholmodSolver final : public LinearSolver {
   }
   std::string name() const override { return "cholmod"; }
   bool exact_factor() const override { return true; }
+  std::size_t factor_entries() const override {
+    if (!factor_) return 0;
+    return factor_->is_super ? factor_->xsize : factor_->nzmax;
+  }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     SingleThreadScope single;

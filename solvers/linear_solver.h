@@ -29,6 +29,8 @@ class LinearSolver {
   virtual LinearSolverStatus solve(const Vector& b, Vector& x) = 0;
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }
+  /// Values a direct solver's factor holds (0 when none): each solve streams them twice.
+  virtual std::size_t factor_entries() const { return 0; }
   /// Whether solve() applies an exact factorization of the last factorized
   /// matrix, which may then precondition conjugate gradients on a later matrix
   /// of the same pattern instead of factorizing it (direct solvers).

@@ -61,6 +61,7 @@ void implicit_step(benchmark::State& state, const std::string& solver) {
   std::sort(steps.begin(), steps.end());
   state.counters["median_step_ms"] = 1e3 * steps[steps.size() / 2];
   state.counters["factorizations"] = report.solver.factorizations;
+  state.counters["pcg_iterations_per_step"] = static_cast<double>(report.solver.pcg_iterations) / (steps.size() + 3);
   state.counters["nodes"] = body->node_count();
   state.counters["dofs"] = body->dof_count();
 }
@@ -122,6 +123,26 @@ void BM_ElementKernelsCorotational(benchmark::State& state) {
   };
   for (auto _ : state) body->tangent(u, discard, &f);
   state.counters["elements"] = body->element_count();
+}
+
+// One solve with a CHOLMOD factor (forward and back substitution): what each
+// CG iteration preconditioned by the factor pays beside its product with K.
+void BM_CholmodSolve(benchmark::State& state) {
+  auto body = block_body(state.range(0));
+  RunReport report;
+  SparseMatrix K = build_pattern(*body);
+  body->tangent(Vector::Zero(body->dof_count()), add_into(K), nullptr);
+  FreeDofs free(body->dof_count(), body->dirichlet(0.0));
+  free.prepare_matrix(K);
+  free.restrict_values(K);
+  auto solver = make_linear_solver({}, report);
+  solver->analyze(free.restricted());
+  solver->factorize(free.restricted());
+  Vector b = Vector::Ones(free.free_count()), x;
+  for (auto _ : state) solver->solve(b, x);
+  state.counters["dofs"] = free.free_count();
+  state.counters["factor_entries"] = static_cast<double>(solver->factor_entries());
+  state.counters["bytes_per_step"] = 2.0 * sizeof(double) * solver->factor_entries();  // read forward and back
 }
 
 void BM_CholmodFactorization(benchmark::State& state) {
@@ -190,6 +211,7 @@ BENCHMARK(BM_CentralDifferenceStepCorotational)->DenseRange(0, 2)->Unit(benchmar
 BENCHMARK(BM_StiffnessAssemblyCorotational)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ElementKernelsCorotational)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CholmodFactorization)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CholmodSolve)->Arg(2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StiffnessAssemblyFloor)->DenseRange(0, 2)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ImplicitStepFloor)->DenseRange(0, 2)->Iterations(40)->Unit(benchmark::kMillisecond);
 
