@@ -40,7 +40,7 @@ CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
 PointIntegration make_points(const MeshlessDomain& domain, int order) {
   CellQuadrature q = cell_quadrature(domain.background(), order);
   return PointIntegration(domain.shapes_at(q.position, "the quadrature point"), std::move(q.weight),
-                          domain.nodes().size());
+                          domain.nodes().positions);
 }
 
 }  // namespace
@@ -164,7 +164,7 @@ double EfgBody::strain_energy(const Vector& u) const {
 
 void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  assemble_material_blocks(points_.shapes(), points_.weights(), law_, u, sink);
+  assemble_material_blocks(points_.shapes(), points_.schedule(), points_.weights(), law_, u, sink);
   std::vector<double> block;
   std::vector<Index> dofs;
   std::vector<Mat3> scratch;

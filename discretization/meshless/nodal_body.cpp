@@ -254,20 +254,21 @@ void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) con
   auto near = table.neighbours.of(I);
   const Index n = static_cast<Index>(near.size()), s0 = table.neighbours.start[I], size = n * dim;
   const double* g = table.gradients_of(I);
-  // e_IJ = sum_a b_J[a] u_a with b_J[a] = [a = J] - [a = I] - grad phi_a(x_I) . X_IJ.
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(n, n);
-  Eigen::VectorXd b(n);
+  // e_IJ = sum_a b_J[a] u_a with b_J[a] = [a = J] - [a = I] - grad phi_a(x_I) . X_IJ,
+  // S = sum_J k_IJ b_J b_J^T = B^T diag(k) B, one matrix product (rows of B: the b_J).
+  Eigen::MatrixXd B = Eigen::MatrixXd::Zero(n, n);
+  Eigen::VectorXd k(n);
   for (Index j = 0; j < n; ++j) {
-    const double k = pairs_.stiffness[s0 + j];
-    if (k == 0.0) continue;
+    k[j] = pairs_.stiffness[s0 + j];
+    if (k[j] == 0.0) continue;
     const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
     for (Index a = 0; a < n; ++a) {
       double gX = 0.0;
       for (int l = 0; l < dim; ++l) gX += g[dim * a + l] * X[l];
-      b[a] = (a == j ? 1.0 : 0.0) - (near[a] == I ? 1.0 : 0.0) - gX;
+      B(j, a) = (a == j ? 1.0 : 0.0) - (near[a] == I ? 1.0 : 0.0) - gX;
     }
-    S.noalias() += k * b * b.transpose();
   }
+  const Eigen::MatrixXd S = B.transpose() * k.asDiagonal() * B;
   for (Index a = 0; a < n; ++a)
     for (Index c = 0; c < n; ++c)
       for (int i = 0; i < dim; ++i) block[(dim * a + i) * size + dim * c + i] += S(a, c);
@@ -277,7 +278,8 @@ void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   BlockExtra stabilization;
   if (stabilized_) stabilization = [this](Index I, std::vector<double>& block) { add_stabilization_block(I, block); };
-  assemble_material_blocks(domain_.at_nodes(), domain_.nodes().volume, law_, u, sink, stabilization);
+  if (schedule_.colours.empty()) schedule_ = schedule_points(domain_.at_nodes(), domain_.nodes().positions);
+  assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization);
   if (f) internal_force(u, *f);
 }
 

@@ -12,6 +12,7 @@
 
 #include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/nodal_force_kernel.h"
+#include "discretization/meshless/point_integration.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -71,6 +72,7 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
   mutable std::vector<double> thread_forces_;  // 2D pass
   std::vector<double> position4_;              // 3D pass: positions 4 to a node (aligned_32)
   mutable NodalForceScratch scratch_;          // 3D pass
+  mutable PointSchedule schedule_;             // tangent assembly, built at its first call
 };
 
 }  // namespace kerf

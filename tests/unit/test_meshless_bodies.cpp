@@ -3,12 +3,15 @@
 // blind to affine motions, objectivity, masses and loads adding up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <Eigen/Geometry>
 
 #include "core/check.h"
 #include "discretization/body_factory.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
+#include "discretization/meshless/point_integration.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -98,6 +101,33 @@ TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
       expect_consistent_derivatives(*small_body("efg", dim, model), what + " nitsche",
                                     model == MaterialModel::linear);
     }
+}
+
+// Assembly hands the blocks of one colour's cubes to the sink at the same
+// time: no two cubes of a colour may share a node, and every point is there once.
+TEST(MeshlessBodies, PointScheduleColoursShareNoNodeAndHoldEveryPoint) {
+  for (int dim : {2, 3}) {
+    // 2 mm spacing: cubes about a centimetre wide, several to a colour.
+    auto body = small_body("nodal", dim, MaterialModel::linear, {"discretization.meshless.spacing=0.002"});
+    const MeshlessDomain& domain = dynamic_cast<const NodalBody&>(*body).domain();
+    const ShapeTable& table = domain.at_nodes();
+    const PointSchedule schedule = schedule_points(table, domain.nodes().positions);
+    std::vector<int> seen(table.point_count(), 0);
+    std::size_t cubes = 0;
+    for (const auto& colour : schedule.colours) {
+      std::vector<int> owner(body->node_count(), -1);  // the cube of this colour holding the node
+      for (std::size_t c = 0; c < colour.size(); ++c, ++cubes)
+        for (Index p : colour[c]) {
+          ++seen[p];
+          for (Index J : table.neighbours.of(p)) {
+            EXPECT_TRUE(owner[J] < 0 || owner[J] == static_cast<int>(c)) << "dim " << dim << " node " << J;
+            owner[J] = static_cast<int>(c);
+          }
+        }
+    }
+    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), table.point_count()) << dim;
+    EXPECT_GT(cubes, schedule.colours.size()) << dim;  // more than one cube a colour: the colours run in parallel
+  }
 }
 
 TEST(NodalBody, StabilizationIgnoresAffineMotionsOfAnySize) {
