@@ -8,19 +8,14 @@
 namespace kerf {
 
 EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding)
-    : cut_(&cut),
-      pieces_(pieces),
-      spacing_(spacing),
-      frame_(common_frame(cut, 0, pieces)),
-      dim_(cut.dimension),
-      anchor_(cut.vertices.front()) {
-  size_lattice(padding);
-#pragma omp parallel for schedule(static)
-  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c) columns_[c] = column_at(column_point(c));
-}
+    : EnrichmentGrid(cut, pieces, spacing, padding, nullptr) {}
 
 EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding,
                                const EnrichmentGrid& before)
+    : EnrichmentGrid(cut, pieces, spacing, padding, &before) {}
+
+EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding,
+                               const EnrichmentGrid* before)
     : cut_(&cut),
       pieces_(pieces),
       spacing_(spacing),
@@ -28,18 +23,19 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       dim_(cut.dimension),
       anchor_(cut.vertices.front()) {
   size_lattice(padding);
-  const bool grows = dim_ == 3 && before.cut_ == cut_ && before.pieces_ < pieces_ && same_lattice(before);
+  const bool grows =
+      before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c) {
     const Vec3 x = column_point(c);
-    const Index old = grows ? column_in(before, c) : -1;
+    const Index old = grows ? column_in(*before, c) : -1;
     if (old < 0) {
       columns_[c] = column_at(x);
       continue;
     }
-    columns_[c] = before.columns_[old];
+    columns_[c] = before->columns_[old];
     if (columns_[c].d_plus == 0.0) continue;  // over an earlier piece: it wins
-    const CutRegion added = cut_region(cut, before.pieces_, pieces_, frame_, x);
+    const CutRegion added = cut_region(cut, before->pieces_, pieces_, frame_, x);
     if (added.d_plus < columns_[c].d_plus) columns_[c] = column_of(added, x);
   }
 }

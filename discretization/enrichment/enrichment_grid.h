@@ -63,6 +63,8 @@ class EnrichmentGrid {
   std::vector<double> lattice_phi() const;
 
  private:
+  /// Both public constructors: grown from *before when given.
+  EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding, const EnrichmentGrid* before);
   struct Column {
     Index piece = 0;
     double d_plus = 0.0;

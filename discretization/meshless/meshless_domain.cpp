@@ -61,8 +61,9 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     smoothing_ = std::make_unique<SmoothedGradients>(nodes_, *index_);
     if (enrichment()) smoothing_->set_cuts(*enrichment_, nodes_);
     at_nodes_ = smoothing_->table(nodes_, basis_, enrichment(), error_context_, mls_remedy());
-  } else {
-    at_nodes_ = shapes_at(nodes_.positions, "the node");
+  } else {  // refreshed row by row when a cut grows: the factors' gradients are kept
+    at_nodes_ = shape_table(nodes_, *index_, basis_, nodes_.positions, "the node", error_context_, mls_remedy(),
+                            enrichment(), true);
   }
 }
 

@@ -185,8 +185,9 @@ std::size_t NodalBody::force_pass_bytes() const {
   std::size_t bytes = slots * (sizeof(Index) + dim * sizeof(double)) + N * (sizeof(Index) + sizeof(double));
   if (stabilized_)
     bytes += slots * sizeof(double) + N * sizeof(double) * (12 + 3);  // k; sums, moments, positions
-  // u read, each thread's forces zeroed, scattered into and summed, f written
-  return bytes + N * dim * sizeof(double) * (2 + 2 * threads);
+  // u read (3D: and copied 4 to a node), each thread's forces zeroed, scattered into and summed, f written
+  const std::size_t lanes = dim == 3 ? 4 : dim;
+  return bytes + N * sizeof(double) * (2 * dim + (dim == 3 ? lanes : 0) + 2 * lanes * threads);
 }
 
 NodalForceTables NodalBody::force_tables() const {

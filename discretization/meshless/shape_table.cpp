@@ -33,10 +33,9 @@ Filled fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3&
   const bool ok = scratch.evaluate_looked_up(nodes, basis, point, near);
   t.condition[p] = scratch.shape.condition;
   if (!t.weight_factor.empty())
-    for (std::size_t k = 0; k < near.size(); ++k) {
-      t.weight_factor[s + k] = scratch.factors()[k].value;
-      t.weight_factor_gradient[s + k] = scratch.factors()[k].gradient;
-    }
+    for (std::size_t k = 0; k < near.size(); ++k) t.weight_factor[s + k] = scratch.factors()[k].value;
+  if (!t.weight_factor_gradient.empty())
+    for (std::size_t k = 0; k < near.size(); ++k) t.weight_factor_gradient[s + k] = scratch.factors()[k].gradient;
   if (!ok) return Filled::singular;
   for (std::size_t k = 0; k < near.size(); ++k) {
     t.value[s + k] = scratch.shape.value[k];
@@ -121,7 +120,7 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
 
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const EnrichmentRule* enrichment) {
+                       const EnrichmentRule* enrichment, bool keep_factor_gradients) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
@@ -130,10 +129,8 @@ ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis b
   t.value.assign(t.neighbours.index.size(), 0.0);
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
   t.condition.assign(P, 0.0);
-  if (enrichment) {
-    t.weight_factor.assign(t.neighbours.index.size(), 1.0);
-    t.weight_factor_gradient.assign(t.neighbours.index.size(), Vec3::Zero());
-  }
+  if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
+  if (enrichment && keep_factor_gradients) t.weight_factor_gradient.assign(t.neighbours.index.size(), Vec3::Zero());
   std::vector<char> filled;
   fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, false, filled, what, context, remedy);
   return t;
@@ -144,13 +141,15 @@ std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, M
                                       const EnrichmentRule& enrichment, const std::string& what,
                                       const std::string& context, const std::string& remedy) {
   const std::size_t slots = table.neighbours.index.size();
-  if (table.weight_factor.empty()) table.weight_factor.assign(slots, 1.0);
-  // Factors stored without their gradients (another builder) cannot be compared: every row is recomputed.
-  const bool comparable = table.weight_factor_gradient.size() == slots;
-  if (!comparable) table.weight_factor_gradient.assign(slots, Vec3::Zero());
+  if (table.weight_factor.empty()) {  // built before any cut: every factor was 1
+    table.weight_factor.assign(slots, 1.0);
+    table.weight_factor_gradient.assign(slots, Vec3::Zero());
+  }
+  KERF_CHECK(table.weight_factor_gradient.size() == slots,
+             "internal: a table refreshed for a growing cut must keep its factors' gradients (keep_factor_gradients)");
   std::vector<char> filled;
   fill_rows(table, nodes, basis, points, static_cast<Index>(rows.size()), [&](Index i) { return rows[i]; },
-            &enrichment, comparable, filled, what, context, remedy);
+            &enrichment, true, filled, what, context, remedy);
   std::vector<Index> recomputed;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (filled[i]) recomputed.push_back(rows[i]);

@@ -21,7 +21,7 @@ struct ShapeTable {
   std::vector<double> gradient;   // per (point, neighbour), dimension entries (1/m)
   std::vector<double> condition;  // per point: condition number of the scaled moment matrix
   std::vector<double> weight_factor;  // per (point, neighbour): a cut's g_I (empty without cuts)
-  std::vector<Vec3> weight_factor_gradient;  // per (point, neighbour): grad g_I (1/m; with weight_factor)
+  std::vector<Vec3> weight_factor_gradient;  // per (point, neighbour): grad g_I (1/m; tables refreshed for cuts)
   Index point_count() const { return neighbours.size(); }
   const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
   const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }
@@ -59,9 +59,11 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 /// `enrichment` is given. Throws when the moment matrix at a point cannot be
 /// inverted: `context` (where the setting comes from), then the point
 /// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
+/// With `keep_factor_gradients`, the factors' gradients are stored too
+/// (refresh_shape_rows needs them; 24 bytes a slot).
 ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const EnrichmentRule* enrichment = nullptr);
+                       const EnrichmentRule* enrichment = nullptr, bool keep_factor_gradients = false);
 
 /// Recomputes rows `rows` of a table built by shape_table at `points` (the
 /// same points, same neighbour lists) with the cuts' current enrichment: the
