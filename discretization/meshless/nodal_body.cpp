@@ -178,6 +178,11 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   }
 }
 
+void NodalBody::internal_force_baseline(const Vector& u, Vector& f) const {
+  KERF_CHECK(domain_.dimension() == 3, "internal: the baseline pass is the 3D one");
+  nodal_force_3d(force_tables(), law_, u, f, scratch_, VectorUnit::baseline);
+}
+
 std::size_t NodalBody::force_pass_bytes() const {
   const ShapeTable& table = domain_.at_nodes();
   const std::size_t dim = domain_.dimension(), slots = table.neighbours.index.size(), N = node_count();

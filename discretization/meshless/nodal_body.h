@@ -49,6 +49,9 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
 
   /// Stabilisation energy alone (J): zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;
+  /// f_int(u) by the baseline x86-64 form of the 3D pass (tests: it must
+  /// agree with the vector unit's form).
+  void internal_force_baseline(const Vector& u, Vector& f) const;
   /// Bytes one internal-force pass streams (tables once, u and each thread's
   /// force vector once): the pass's floor over a measured bandwidth.
   std::size_t force_pass_bytes() const;

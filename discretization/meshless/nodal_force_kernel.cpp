@@ -127,8 +127,9 @@ std::vector<double> padded_positions(std::span<const Vec3> positions) {
 }
 
 void nodal_force_3d(const NodalForceTables& t, const MaterialLaw& law, const Vector& u, Vector& f,
-                    NodalForceScratch& scratch) {
-  static const NodesPass pass = best_nodes_pass();
+                    NodalForceScratch& scratch, VectorUnit unit) {
+  static const NodesPass best = best_nodes_pass();
+  const NodesPass pass = unit == VectorUnit::best ? best : nodes_pass_baseline;
   const Index N = t.nodes;
   f.resize(3 * N);
   scratch.u4.resize(4 * static_cast<std::size_t>(N) + 4);

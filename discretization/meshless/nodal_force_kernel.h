@@ -41,8 +41,12 @@ const double* aligned_32(const std::vector<double>& buffer);
 /// Positions 4 to a node (x, y, z, 0), with the spare doubles aligned_32 needs.
 std::vector<double> padded_positions(std::span<const Vec3> positions);
 
+/// Which compiled form of the pass runs: the best this CPU has, or the
+/// baseline x86-64 one (tests compare the two).
+enum class VectorUnit { best, baseline };
+
 /// f = f_int(u) (3 per node).
 void nodal_force_3d(const NodalForceTables& tables, const MaterialLaw& law, const Vector& u, Vector& f,
-                    NodalForceScratch& scratch);
+                    NodalForceScratch& scratch, VectorUnit unit = VectorUnit::best);
 
 }  // namespace kerf

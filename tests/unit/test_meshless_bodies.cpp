@@ -103,6 +103,22 @@ TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
     }
 }
 
+// The 3D force pass is compiled twice (AVX2 + FMA, baseline x86-64) and the
+// CPU picks one: both must give the same forces (to round-off: FMA rounds once).
+TEST(NodalBody, BaselineAndVectorForcePassesAgree) {
+  for (MaterialModel model : {MaterialModel::linear, MaterialModel::corotational})
+    for (const char* stab : {"true", "false"}) {
+      auto body = small_body("nodal", 3, model, {std::string("discretization.meshless.stabilization=") + stab});
+      const auto& nodal = dynamic_cast<const NodalBody&>(*body);
+      Vector u = smooth_field(*body);
+      Vector best, baseline;
+      nodal.internal_force(u, best);
+      nodal.internal_force_baseline(u, baseline);
+      ASSERT_GT(best.norm(), 0.0);
+      EXPECT_LT((best - baseline).norm(), 1e-12 * best.norm()) << to_string(model) << " stab " << stab;
+    }
+}
+
 // Assembly hands the blocks of one colour's cubes to the sink at the same
 // time: no two cubes of a colour may share a node, and every point is there once.
 TEST(MeshlessBodies, PointScheduleColoursShareNoNodeAndHoldEveryPoint) {
