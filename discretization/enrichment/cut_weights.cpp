@@ -42,13 +42,22 @@ WeightFactor CutWeights::factor(Index node, const Vec3& x) const {
 }
 
 void CutWeights::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
-  std::fill(out.begin(), out.end(), WeightFactor{});
-  std::vector<WeightFactor> part_factors(nodes.size());
+  // The first cut's factors go straight into `out` (one cut, the common case,
+  // allocates nothing); each further cut's multiply in (1 where not enriched).
+  bool first = true;
+  std::vector<WeightFactor> part_factors;
   for (const Part& p : parts_) {
     if (!p.rule) continue;
+    if (first) {
+      p.rule->factors(nodes, x, out);
+      first = false;
+      continue;
+    }
+    part_factors.resize(nodes.size());
     p.rule->factors(nodes, x, part_factors);
-    for (std::size_t k = 0; k < nodes.size(); ++k) out[k] = out[k] * part_factors[k];  // 1 where not enriched
+    for (std::size_t k = 0; k < nodes.size(); ++k) out[k] = out[k] * part_factors[k];
   }
+  if (first) std::fill(out.begin(), out.end(), WeightFactor{});
 }
 
 std::vector<Index> CutWeights::reached_by(const CutSurface& surface, Index first, Index last) const {
