@@ -11,41 +11,74 @@ SparseMatrix build_pattern(const DiscreteBody& body) {
                        [&](const CouplingVisitor& visit) { body.visit_couplings(visit); });
 }
 
-SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
-  // Couplings are gathered node by node (a block holds whole nodes), with
-  // duplicates squeezed out as a list grows: meshless bodies visit each node
-  // pair dozens of times.
-  const Index nodes = n / dpn;
-  std::vector<std::vector<Index>> adjacent(nodes);
-  std::vector<std::size_t> unique_size(nodes, 0);
-  auto squeeze = [](std::vector<Index>& list) {
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  };
-  std::vector<Index> block_nodes;
+namespace {
+
+/// Each visited block's nodes, in one flat list (a block holds whole nodes).
+struct BlockNodes {
+  std::vector<Index> start{0};
+  std::vector<Index> nodes;
+};
+
+BlockNodes gather_blocks(int dpn, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
+  BlockNodes blocks;
   visit_couplings([&](std::span<const Index> dofs) {
-    KERF_DCHECK(dofs.size() % dpn == 0);  // a coupling block holds whole nodes
-    block_nodes.clear();
-    for (std::size_t i = 0; i < dofs.size(); i += dpn) block_nodes.push_back(dofs[i] / dpn);
-    for (Index a : block_nodes) {
-      auto& list = adjacent[a];
-      list.insert(list.end(), block_nodes.begin(), block_nodes.end());
-      if (list.size() > 2 * unique_size[a] + 256) squeeze(list), unique_size[a] = list.size();
-    }
+    KERF_DCHECK(dofs.size() % dpn == 0);
+    for (std::size_t i = 0; i < dofs.size(); i += dpn) blocks.nodes.push_back(dofs[i] / dpn);
+    blocks.start.push_back(static_cast<Index>(blocks.nodes.size()));
   });
-  SparseMatrix m(n, n);
-  std::vector<Index> counts(n);
-  for (Index a = 0; a < nodes; ++a) {
-    adjacent[a].push_back(a);
-    squeeze(adjacent[a]);
-    for (int i = 0; i < dpn; ++i) counts[dpn * a + i] = static_cast<Index>(adjacent[a].size()) * dpn;
+  return blocks;
+}
+
+/// For each node, the blocks holding it (a counting sort of the blocks' nodes).
+std::vector<std::vector<Index>> blocks_of_nodes(const BlockNodes& blocks, Index nodes) {
+  std::vector<std::vector<Index>> of(nodes);
+  const Index count = static_cast<Index>(blocks.start.size()) - 1;
+  for (Index b = 0; b < count; ++b)
+    for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) of[blocks.nodes[k]].push_back(b);
+  return of;
+}
+
+}  // namespace
+
+SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
+  // Meshless bodies visit each node pair dozens of times (once per shared
+  // point): each node's couplings are found once, by marking the nodes of the
+  // blocks that hold it, rather than by sorting every visit's pairs.
+  const Index nodes = n / dpn;
+  const BlockNodes blocks = gather_blocks(dpn, visit_couplings);
+  const std::vector<std::vector<Index>> holding = blocks_of_nodes(blocks, nodes);
+  std::vector<std::vector<Index>> adjacent(nodes);
+#pragma omp parallel
+  {
+    std::vector<Index> marked_by(nodes, -1);
+#pragma omp for schedule(dynamic, 64)
+    for (Index a = 0; a < nodes; ++a) {
+      auto& list = adjacent[a];
+      list.push_back(a);  // the diagonal is always present
+      marked_by[a] = a;
+      for (Index b : holding[a])
+        for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) {
+          const Index c = blocks.nodes[k];
+          if (marked_by[c] != a) marked_by[c] = a, list.push_back(c);
+        }
+      std::sort(list.begin(), list.end());
+    }
   }
-  m.reserve(counts);
+  SparseMatrix m(n, n);
+  Index nonzeros = 0;
+  for (Index a = 0; a < nodes; ++a) nonzeros += static_cast<Index>(adjacent[a].size()) * dpn * dpn;
+  m.resizeNonZeros(nonzeros);
+  Index* outer = m.outerIndexPtr();
+  Index* inner = m.innerIndexPtr();
+  Index at = 0;
   for (Index a = 0; a < nodes; ++a)
-    for (int i = 0; i < dpn; ++i)
-      for (Index b : adjacent[a])
-        for (int k = 0; k < dpn; ++k) m.insert(dpn * a + i, dpn * b + k) = 0.0;
-  m.makeCompressed();
+    for (int i = 0; i < dpn; ++i) {
+      outer[dpn * a + i] = at;
+      for (Index c : adjacent[a])
+        for (int k = 0; k < dpn; ++k) inner[at++] = dpn * c + k;
+    }
+  outer[n] = at;
+  std::fill(m.valuePtr(), m.valuePtr() + nonzeros, 0.0);
   return m;
 }
 
