@@ -14,6 +14,7 @@ namespace {
 struct CellQuadrature {
   std::vector<Vec3> position;
   std::vector<double> weight;
+  Index per_cell = 0;
 };
 
 /// Collapsed Gauss points (n per direction) on every straight cell of the mesh.
@@ -21,6 +22,7 @@ CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
   const int dim = mesh.dimension;
   QuadratureRule rule = collapsed_gauss(dim, n);
   CellQuadrature out;
+  out.per_cell = static_cast<Index>(rule.points.size());
   for (Index c = 0; c < mesh.cell_count(); ++c) {
     auto nodes = mesh.cell(c);
     const Vec3& a = mesh.nodes[nodes[0]];
@@ -40,7 +42,7 @@ CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
 PointIntegration make_points(const MeshlessDomain& domain, int order) {
   CellQuadrature q = cell_quadrature(domain.background(), order);
   return PointIntegration(domain.shapes_at(q.position, "the quadrature point"), std::move(q.weight),
-                          domain.nodes().positions);
+                          domain.nodes().positions, q.per_cell);
 }
 
 }  // namespace

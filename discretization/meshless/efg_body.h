@@ -27,6 +27,8 @@ class EfgBody final : public MeshlessBody, public WeakConstraints {
   EfgBody(const Scene& scene, MeshlessDomain domain);
 
   Index element_count() const override { return points_.point_count(); }
+  /// The Gauss points of the cells, cell by cell.
+  const PointIntegration& points() const { return points_; }
 
   void visit_couplings(const CouplingVisitor& visit) const override;
   /// Not reentrant: two calls on one body must not run at the same time (per-point scratch).

@@ -5,13 +5,17 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <utility>
 
 #include "core/check.h"
 
 namespace kerf {
 
-PointIntegration::PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes)
-    : shapes_(std::move(shapes)), weights_(std::move(weights)), schedule_(schedule_points(shapes_, nodes)) {
+PointIntegration::PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes,
+                                   Index points_per_cell)
+    : shapes_(std::move(shapes)),
+      weights_(std::move(weights)),
+      schedule_(schedule_points(shapes_, nodes, points_per_cell)) {
   const Index node_count = static_cast<Index>(nodes.size());
   KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count(), "integration weights: ", weights_.size(),
              " for ", shapes_.point_count(), " points");
@@ -44,9 +48,10 @@ void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
 }
 
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
-                        std::vector<double>& block) {
+                        std::span<const Index> place, Index block_nodes, std::vector<double>& block) {
   const int dim = table.dimension;
-  const Index n = static_cast<Index>(table.neighbours.of(point).size()), size = n * dim;
+  const Index n = static_cast<Index>(table.neighbours.of(point).size()), size = block_nodes * dim;
+  KERF_DCHECK(static_cast<Index>(place.size()) == n);
   const double* g = table.gradients_of(point);
   for (Index b = 0; b < n; ++b)
     for (int k = 0; k < dim; ++k) {
@@ -57,42 +62,58 @@ void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, 
           for (int i = 0; i < dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * g[dim * b + l];
       // A hyperelastic tangent has major symmetry, so K is symmetric: the
       // blocks a <= b are computed and mirrored.
+      const Index column = dim * place[b] + k;
       for (Index a = 0; a <= b; ++a)
         for (int i = 0; i < dim; ++i) {
           double s = 0.0;
           for (int j = 0; j < dim; ++j) s += T(i, j) * g[dim * a + j];
-          block[(dim * a + i) * size + dim * b + k] += scale * s;
-          if (a < b) block[(dim * b + k) * size + dim * a + i] += scale * s;
+          const Index row = dim * place[a] + i;
+          block[row * size + column] += scale * s;
+          if (a < b) block[column * size + row] += scale * s;
         }
     }
 }
 
-PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes) {
-  const Index P = table.point_count();
-  std::vector<Vec3> centre(P, Vec3::Zero());
-  double reach = 0.0;  // the largest distance from a point's centroid to one of its neighbours
+namespace {
+
+/// The range of points in the group starting at `first`.
+std::pair<Index, Index> group_points(Index first, Index group_size, Index point_count) {
+  return {first, std::min(point_count, first + group_size)};
+}
+
+}  // namespace
+
+PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size) {
+  KERF_CHECK(group_size >= 1, "internal: a point group of ", group_size, " points");
+  const Index P = table.point_count(), groups = (P + group_size - 1) / group_size;
+  std::vector<Vec3> centre(groups, Vec3::Zero());
+  double reach = 0.0;  // the largest distance from a group's centroid to one of its nodes
   Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
-  for (Index p = 0; p < P; ++p) {
-    auto near = table.neighbours.of(p);
-    for (Index J : near) centre[p] += nodes[J];
-    if (!near.empty()) centre[p] /= static_cast<double>(near.size());
-    for (Index J : near) reach = std::max(reach, (nodes[J] - centre[p]).norm());
-    low = low.cwiseMin(centre[p]), high = high.cwiseMax(centre[p]);
+  for (Index g = 0; g < groups; ++g) {
+    const auto [begin, end] = group_points(g * group_size, group_size, P);
+    std::size_t count = 0;
+    for (Index p = begin; p < end; ++p)
+      for (Index J : table.neighbours.of(p)) centre[g] += nodes[J], ++count;
+    if (count > 0) centre[g] /= static_cast<double>(count);
+    for (Index p = begin; p < end; ++p)
+      for (Index J : table.neighbours.of(p)) reach = std::max(reach, (nodes[J] - centre[g]).norm());
+    low = low.cwiseMin(centre[g]), high = high.cwiseMax(centre[g]);
   }
-  // Two points sharing a node have centroids within 2 reach: cubes of that width
+  // Two groups sharing a node have centroids within 2 reach: cubes of that width
   // (a hair more for round-off), same-colour cubes a cube apart.
   const double width = 2.0 * reach * (1.0 + 1e-9) + 1e-300;
   std::array<Index, 3> count{1, 1, 1};
   for (int a = 0; a < table.dimension; ++a)
     count[a] = std::max<Index>(1, static_cast<Index>(std::floor((high[a] - low[a]) / width)) + 1);
   std::vector<std::vector<Index>> cubes(static_cast<std::size_t>(count[0]) * count[1] * count[2]);
-  for (Index p = 0; p < P; ++p) {
+  for (Index g = 0; g < groups; ++g) {
     std::array<Index, 3> at{0, 0, 0};
     for (int a = 0; a < table.dimension; ++a)
-      at[a] = std::min(count[a] - 1, static_cast<Index>((centre[p][a] - low[a]) / width));
-    cubes[at[0] + count[0] * (at[1] + count[1] * at[2])].push_back(p);
+      at[a] = std::min(count[a] - 1, static_cast<Index>((centre[g][a] - low[a]) / width));
+    cubes[at[0] + count[0] * (at[1] + count[1] * at[2])].push_back(g * group_size);
   }
   PointSchedule schedule;
+  schedule.group_size = group_size;
   schedule.colours.resize(table.dimension == 3 ? 8 : 4);
   for (Index k = 0; k < count[2]; ++k)
     for (Index j = 0; j < count[1]; ++j)
@@ -103,27 +124,87 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
   return schedule;
 }
 
+namespace {
+
+/// One group's summed material blocks, over the union of its points' nodes.
+class GroupBlock {
+ public:
+  void assemble(const ShapeTable& table, Index begin, Index end, std::span<const double> weights,
+                const MaterialLaw& law, const Vector& u) {
+    const int dim = table.dimension;
+    nodes_.clear();
+    for (Index p = begin; p < end; ++p) {
+      auto near = table.neighbours.of(p);
+      nodes_.insert(nodes_.end(), near.begin(), near.end());
+    }
+    std::sort(nodes_.begin(), nodes_.end());
+    nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+    const Index count = static_cast<Index>(nodes_.size());
+    block_.assign(static_cast<std::size_t>(count * dim) * (count * dim), 0.0);
+    for (Index p = begin; p < end; ++p) {
+      place_.clear();
+      for (Index J : table.neighbours.of(p))
+        place_.push_back(static_cast<Index>(std::lower_bound(nodes_.begin(), nodes_.end(), J) - nodes_.begin()));
+      law.stress_and_tangent(deformation_gradient(table, p, u), P_, dPdF_);
+      add_material_block(table, p, dPdF_, weights[p], place_, count, block_);
+    }
+    dofs_.clear();
+    for (Index J : nodes_)
+      for (int i = 0; i < dim; ++i) dofs_.push_back(dim * J + i);
+  }
+  std::span<const Index> dofs() const { return dofs_; }
+  std::vector<double>& block() { return block_; }
+
+ private:
+  std::vector<Index> nodes_, place_, dofs_;
+  std::vector<double> block_;
+  Mat3 P_;
+  Mat9 dPdF_;
+};
+
+/// One point's block over its own neighbours, in their order (the order a
+/// method's extra terms are written in).
+void point_block(const ShapeTable& table, Index p, std::span<const double> weights, const MaterialLaw& law,
+                 const Vector& u, std::vector<Index>& place, std::vector<Index>& dofs, std::vector<double>& block) {
+  neighbour_dofs(table, p, dofs);
+  block.assign(dofs.size() * dofs.size(), 0.0);
+  const Index n = static_cast<Index>(table.neighbours.of(p).size());
+  place.resize(n);
+  for (Index k = 0; k < n; ++k) place[k] = k;
+  Mat3 P;
+  Mat9 dPdF;
+  law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
+  add_material_block(table, p, dPdF, weights[p], place, n, block);
+}
+
+}  // namespace
+
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                               const MaterialLaw& law, const Vector& u, const BlockSink& sink,
                               const BlockExtra& extra) {
+  KERF_CHECK(!extra || schedule.group_size == 1, "internal: a method's extra terms need one point a group");
+  const Index P = table.point_count();
   std::exception_ptr failure;  // an exception must not leave an OpenMP region
 #pragma omp parallel
   {
+    GroupBlock group;
+    std::vector<Index> place, dofs;
     std::vector<double> block;
-    std::vector<Index> dofs;
-    Mat3 P;
-    Mat9 dPdF;
     for (const auto& colour : schedule.colours) {
 #pragma omp for schedule(dynamic, 1)
       for (std::size_t c = 0; c < colour.size(); ++c) {
         try {
-          for (Index p : colour[c]) {
-            neighbour_dofs(table, p, dofs);
-            block.assign(dofs.size() * dofs.size(), 0.0);
-            law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
-            add_material_block(table, p, dPdF, weights[p], block);
-            if (extra) extra(p, block);
-            sink(dofs, block);  // no other thread writes these dofs now: this colour's cubes share no node
+          // No other thread writes these dofs now: this colour's cubes share no node.
+          for (Index first : colour[c]) {
+            const auto [begin, end] = group_points(first, schedule.group_size, P);
+            if (end - begin > 1) {
+              group.assemble(table, begin, end, weights, law, u);
+              sink(group.dofs(), group.block());
+              continue;
+            }
+            point_block(table, begin, weights, law, u, place, dofs, block);
+            if (extra) extra(begin, block);
+            sink(dofs, block);
           }
         } catch (...) {
 #pragma omp critical(kerf_meshless_failure)

@@ -14,31 +14,35 @@
 
 namespace kerf {
 
-/// Adds scale * G^T dPdF G into `block` ((n dim)^2, row-major over the point's
-/// n neighbours, dof order node-major): the material stiffness of one point.
-/// dPdF must have major symmetry (every law here derives from an energy): half
-/// the node pairs are computed, the other half mirrored.
+/// Adds scale * G^T dPdF G into `block` ((block_nodes dim)^2, row-major, dof
+/// order node-major): the material stiffness of one point, whose k-th
+/// neighbour is node place[k] of the block. dPdF must have major symmetry
+/// (every law here derives from an energy): half the node pairs are computed,
+/// the other half mirrored.
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
-                        std::vector<double>& block);
+                        std::span<const Index> place, Index block_nodes, std::vector<double>& block);
 
 /// Adds a method's own terms (stabilisation) to one point's block.
 using BlockExtra = std::function<void(Index point, std::vector<double>& block)>;
 
-/// The points of a table in groups whose blocks may reach a sink at the same
-/// time: points binned into cubes at least as wide as two points sharing a
-/// node can be apart (each point's neighbours lie within a radius of the
-/// neighbours' centroid; the cube is twice the largest such radius), the
-/// cubes coloured by the parity of their indices. Two cubes of one colour are
-/// a cube apart: their points share no node.
+/// The points of a table in groups of `group_size` consecutive points (a
+/// cell's Gauss points: their blocks are summed before they reach the sink,
+/// which then places each entry once a cell rather than once a point), the
+/// groups binned into cubes at least as wide as two groups sharing a node can
+/// be apart (a group's nodes lie within a radius of their centroid; the cube
+/// is twice the largest such radius), the cubes coloured by the parity of
+/// their indices. Two cubes of one colour are a cube apart: their groups share
+/// no node.
 struct PointSchedule {
-  std::vector<std::vector<std::vector<Index>>> colours;  // colour -> cube -> points, in order
+  Index group_size = 1;
+  std::vector<std::vector<std::vector<Index>>> colours;  // colour -> cube -> first point of each group, in order
 };
-PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes);
+PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size = 1);
 
 /// K(u) of every point (weight w_p, the law's tangent at F_p, plus `extra`
-/// when given) into the sink: colour by colour, the cubes of a colour in
-/// parallel, each cube's points in order (the sum in each entry does not
-/// depend on the thread count).
+/// when given: groups of one point only) into the sink: colour by colour, the
+/// cubes of a colour in parallel, each cube's groups in order (the sum in each
+/// entry does not depend on the thread count).
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                               const MaterialLaw& law, const Vector& u, const BlockSink& sink,
                               const BlockExtra& extra = {});
@@ -46,8 +50,10 @@ void assemble_material_blocks(const ShapeTable& table, const PointSchedule& sche
 /// Gauss points with weights, and for each node the slots where it appears.
 class PointIntegration {
  public:
-  /// `weights`: one per point of `shapes` (m^3; 2D: m^2); `nodes`: the node positions.
-  PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes);
+  /// `weights`: one per point of `shapes` (m^3; 2D: m^2); `nodes`: the node
+  /// positions; `points_per_cell`: the points come cell by cell, this many each.
+  PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes,
+                   Index points_per_cell);
 
   const ShapeTable& shapes() const { return shapes_; }
   std::span<const double> weights() const { return weights_; }

@@ -120,29 +120,63 @@ TEST(NodalBody, BaselineAndVectorForcePassesAgree) {
 }
 
 // Assembly hands the blocks of one colour's cubes to the sink at the same
-// time: no two cubes of a colour may share a node, and every point is there once.
+// time: no two cubes of a colour may share a node, and every point is there
+// once, whether points go one by one (nodal) or a cell's Gauss points together (EFG).
 TEST(MeshlessBodies, PointScheduleColoursShareNoNodeAndHoldEveryPoint) {
-  for (int dim : {2, 3}) {
-    // 2 mm spacing: cubes about a centimetre wide, several to a colour.
-    auto body = small_body("nodal", dim, MaterialModel::linear, {"discretization.meshless.spacing=0.002"});
-    const MeshlessDomain& domain = dynamic_cast<const NodalBody&>(*body).domain();
-    const ShapeTable& table = domain.at_nodes();
-    const PointSchedule schedule = schedule_points(table, domain.nodes().positions);
-    std::vector<int> seen(table.point_count(), 0);
-    std::size_t cubes = 0;
-    for (const auto& colour : schedule.colours) {
-      std::vector<int> owner(body->node_count(), -1);  // the cube of this colour holding the node
-      for (std::size_t c = 0; c < colour.size(); ++c, ++cubes)
-        for (Index p : colour[c]) {
-          ++seen[p];
-          for (Index J : table.neighbours.of(p)) {
-            EXPECT_TRUE(owner[J] < 0 || owner[J] == static_cast<int>(c)) << "dim " << dim << " node " << J;
-            owner[J] = static_cast<int>(c);
-          }
-        }
+  for (const char* method : {"nodal", "efg"})
+    for (int dim : {2, 3}) {
+      // 2 mm spacing: cubes about a centimetre wide, several to a colour.
+      auto body = small_body(method, dim, MaterialModel::linear, {"discretization.meshless.spacing=0.002"});
+      const auto* efg = dynamic_cast<const EfgBody*>(body.get());
+      const ShapeTable& table = efg ? efg->points().shapes() : dynamic_cast<const NodalBody&>(*body).domain().at_nodes();
+      const PointSchedule schedule =
+          efg ? efg->points().schedule()
+              : schedule_points(table, dynamic_cast<const NodalBody&>(*body).domain().nodes().positions);
+      EXPECT_EQ(schedule.group_size, efg ? (dim == 3 ? 8 : 4) : 1) << method;
+      std::vector<int> seen(table.point_count(), 0);
+      std::size_t cubes = 0;
+      for (const auto& colour : schedule.colours) {
+        std::vector<int> owner(body->node_count(), -1);  // the cube of this colour holding the node
+        for (std::size_t c = 0; c < colour.size(); ++c, ++cubes)
+          for (Index first : colour[c])
+            for (Index p = first; p < std::min(first + schedule.group_size, table.point_count()); ++p) {
+              ++seen[p];
+              for (Index J : table.neighbours.of(p)) {
+                EXPECT_TRUE(owner[J] < 0 || owner[J] == static_cast<int>(c)) << method << dim << " node " << J;
+                owner[J] = static_cast<int>(c);
+              }
+            }
+      }
+      EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), table.point_count()) << method << dim;
+      // More than one cube a colour: the colours run in parallel.
+      EXPECT_GT(cubes, schedule.colours.size()) << method << dim;
     }
-    EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), table.point_count()) << dim;
-    EXPECT_GT(cubes, schedule.colours.size()) << dim;  // more than one cube a colour: the colours run in parallel
+}
+
+// A cell's Gauss points are summed over the union of their nodes before the
+// sink: the matrix must be the one the points give one by one.
+TEST(MeshlessBodies, GroupedPointBlocksAssembleThePointsMatrix) {
+  for (int dim : {2, 3}) {
+    auto body = small_body("efg", dim, MaterialModel::corotational);
+    const PointIntegration& points = dynamic_cast<const EfgBody&>(*body).points();
+    const MeshlessDomain& domain = dynamic_cast<const EfgBody&>(*body).domain();
+    const MaterialLaw law(MaterialModel::corotational, 1.0e4, 0.3);
+    const Vector u = smooth_field(*body);
+    auto assembled = [&](const PointSchedule& schedule) {
+      Eigen::MatrixXd K = Eigen::MatrixXd::Zero(body->dof_count(), body->dof_count());
+      assemble_material_blocks(points.shapes(), schedule, points.weights(), law, u,
+                               [&](std::span<const Index> dofs, std::span<const double> block) {
+                                 const std::size_t n = dofs.size();
+                                 for (std::size_t i = 0; i < n; ++i)
+                                   for (std::size_t j = 0; j < n; ++j) K(dofs[i], dofs[j]) += block[i * n + j];
+                               });
+      return K;
+    };
+    const Eigen::MatrixXd one_by_one = assembled(schedule_points(points.shapes(), domain.nodes().positions));
+    const Eigen::MatrixXd by_cells = assembled(points.schedule());
+    ASSERT_GT(points.schedule().group_size, 1);
+    ASSERT_GT(one_by_one.norm(), 0.0);
+    EXPECT_LT((by_cells - one_by_one).norm(), 1e-13 * one_by_one.norm()) << dim;
   }
 }
 
