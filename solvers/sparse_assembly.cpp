@@ -1,6 +1,7 @@
 #include "solvers/sparse_assembly.h"
 
 #include <algorithm>
+#include <vector>
 
 #include "core/check.h"
 
@@ -87,37 +88,58 @@ CsrView csr_view(SparseMatrix& matrix) {
   return {static_cast<Index>(matrix.rows()), matrix.outerIndexPtr(), matrix.innerIndexPtr(), matrix.valuePtr()};
 }
 
+namespace {
+
+/// The position of `column` in the sorted row [begin, end), known to lie at or
+/// after `from`: tried there first, then by doubling steps and a binary search.
+Index search_forward(const Index* begin, const Index* end, Index from, Index column) {
+  const Index length = static_cast<Index>(end - begin);
+  if (from < length && begin[from] >= column) return from;
+  Index step = 1, low = from;  // begin[low] < column
+  while (low + step < length && begin[low + step] < column) low += step, step *= 2;
+  const Index high = std::min(length, low + step);  // begin[high] >= column, or the row's end
+  return static_cast<Index>(std::lower_bound(begin + low + 1, begin + high, column) - begin);
+}
+
+}  // namespace
+
 BlockSink add_into(SparseMatrix& matrix, double scale) {
   const Index* outer = matrix.outerIndexPtr();
   const Index* inner = matrix.innerIndexPtr();
   double* values = matrix.valuePtr();
   return [=](std::span<const Index> dofs, std::span<const double> block) {
     const std::size_t n = dofs.size();
-    constexpr std::size_t max_block = 512;
-    Index offset[max_block];  // position of column dofs[j] relative to the row start
-    KERF_CHECK(n <= max_block, "a block of ", n, " dofs is larger than the sink handles (", max_block, ")");
+    thread_local std::vector<Index> offsets;  // position of column dofs[j] relative to the row start (absent: the one before)
+    if (offsets.size() < n) offsets.resize(n);
+    Index* offset = offsets.data();
     for (std::size_t i = 0; i < n; ++i) {
       const Index row = dofs[i];
       const Index* begin = inner + outer[row];
       const Index* end = inner + outer[row + 1];
+      const Index length = static_cast<Index>(end - begin);
       // Consecutive dofs of one node share their column pattern, so offsets
-      // found for the previous row are tried first; within a row, consecutive
-      // columns usually sit next to each other.
-      const bool same_pattern = i > 0 && row == dofs[i - 1] + 1 &&
-                                outer[row + 1] - outer[row] == outer[row] - outer[row - 1];
+      // found for the previous row are tried first; within a row, a block's
+      // columns usually come sorted, so each is sought forward from the last.
+      const bool same_pattern = i > 0 && row == dofs[i - 1] + 1 && length == outer[row] - outer[row - 1];
       for (std::size_t j = 0; j < n; ++j) {
         const Index column = dofs[j];
         Index at;
-        if (same_pattern && begin[offset[j]] == column)
+        if (same_pattern && offset[j] >= 0 && begin[offset[j]] == column)
           at = offset[j];
-        else if (j > 0 && column == dofs[j - 1] + 1 && begin + offset[j - 1] + 1 < end &&
-                 begin[offset[j - 1] + 1] == column)
-          at = offset[j - 1] + 1;
+        else if (j > 0 && column > dofs[j - 1])
+          at = search_forward(begin, end, offset[j - 1] + 1, column);
         else
           at = static_cast<Index>(std::lower_bound(begin, end, column) - begin);
-        KERF_DCHECK(begin + at < end && begin[at] == column);
-        offset[j] = at;
-        values[outer[row] + at] += scale * block[i * n + j];
+        if (at < length && begin[at] == column) {
+          offset[j] = at;
+          values[outer[row] + at] += scale * block[i * n + j];
+          continue;
+        }
+        // A block may span node pairs the pattern leaves out (a cell's points
+        // summed over the union of their nodes) if it holds zeros there.
+        KERF_CHECK(block[i * n + j] == 0.0, "internal: a block writes ", block[i * n + j], " at (", row, ", ", column,
+                   "), outside the matrix's pattern");
+        offset[j] = at - 1;
       }
     }
   };

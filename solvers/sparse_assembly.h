@@ -16,7 +16,9 @@ SparseMatrix build_pattern(const DiscreteBody& body);
 SparseMatrix build_pattern(int dofs_per_node, Index n,
                            const std::function<void(const CouplingVisitor&)>& visit_couplings);
 
-/// A sink adding scale * block into `matrix` (whose pattern holds the block); thread-safe.
+/// A sink adding scale * block into `matrix` (whose pattern holds the block's
+/// nonzero entries; entries outside it must be zero and are skipped);
+/// thread-safe for blocks that share no row.
 BlockSink add_into(SparseMatrix& matrix, double scale = 1.0);
 
 /// The matrix's arrays as a body writes into them (MatrixAssembly).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <exception>
 #include <limits>
 #include <utility>
@@ -47,31 +48,56 @@ void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
   }
 }
 
+namespace {
+
+/// add_material_block with the dimension fixed, so each node pair's DIM x DIM
+/// block is formed in registers and written a row at a time.
+template <int DIM>
+void add_material_block_fixed(const double* g, Index n, const Mat9& dPdF, double scale, const Index* place,
+                              Index size, double* block) {
+  using Grad = Eigen::Matrix<double, DIM, 1>;
+  using Block = Eigen::Matrix<double, DIM, DIM>;
+  for (Index b = 0; b < n; ++b) {
+    const Grad gb = Eigen::Map<const Grad>(g + DIM * b);
+    // T[k](i, j) = sum_l dP(i,j)/dF(k,l) g_b(l), scaled by the weight
+    std::array<Block, DIM> T;
+    for (int k = 0; k < DIM; ++k)
+      for (int j = 0; j < DIM; ++j)
+        for (int i = 0; i < DIM; ++i) {
+          double t = 0.0;
+          for (int l = 0; l < DIM; ++l) t += dPdF(i + 3 * j, k + 3 * l) * gb[l];
+          T[k](i, j) = scale * t;
+        }
+    // A hyperelastic tangent has major symmetry, so K is symmetric: the
+    // blocks a <= b are computed and mirrored.
+    const Index column = DIM * place[b];
+    for (Index a = 0; a <= b; ++a) {
+      const Grad ga = Eigen::Map<const Grad>(g + DIM * a);
+      Block K;  // K(i, k) = sum_j T[k](i, j) g_a(j)
+      for (int k = 0; k < DIM; ++k) K.col(k) = T[k] * ga;
+      const Index row = DIM * place[a];
+      for (int i = 0; i < DIM; ++i)
+        for (int k = 0; k < DIM; ++k) block[(row + i) * size + column + k] += K(i, k);
+      if (a < b)
+        for (int k = 0; k < DIM; ++k)
+          for (int i = 0; i < DIM; ++i) block[(column + k) * size + row + i] += K(i, k);
+    }
+  }
+}
+
+}  // namespace
+
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
                         std::span<const Index> place, Index block_nodes, std::vector<double>& block) {
   const int dim = table.dimension;
   const Index n = static_cast<Index>(table.neighbours.of(point).size()), size = block_nodes * dim;
   KERF_DCHECK(static_cast<Index>(place.size()) == n);
+  KERF_DCHECK(static_cast<Index>(block.size()) == size * size);
   const double* g = table.gradients_of(point);
-  for (Index b = 0; b < n; ++b)
-    for (int k = 0; k < dim; ++k) {
-      // T(i, j) = sum_l dP(i,j)/dF(k,l) g_b(l)
-      Mat3 T = Mat3::Zero();
-      for (int l = 0; l < dim; ++l)
-        for (int j = 0; j < dim; ++j)
-          for (int i = 0; i < dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * g[dim * b + l];
-      // A hyperelastic tangent has major symmetry, so K is symmetric: the
-      // blocks a <= b are computed and mirrored.
-      const Index column = dim * place[b] + k;
-      for (Index a = 0; a <= b; ++a)
-        for (int i = 0; i < dim; ++i) {
-          double s = 0.0;
-          for (int j = 0; j < dim; ++j) s += T(i, j) * g[dim * a + j];
-          const Index row = dim * place[a] + i;
-          block[row * size + column] += scale * s;
-          if (a < b) block[column * size + row] += scale * s;
-        }
-    }
+  if (dim == 3)
+    add_material_block_fixed<3>(g, n, dPdF, scale, place.data(), size, block.data());
+  else
+    add_material_block_fixed<2>(g, n, dPdF, scale, place.data(), size, block.data());
 }
 
 namespace {
@@ -112,6 +138,21 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
       at[a] = std::min(count[a] - 1, static_cast<Index>((centre[g][a] - low[a]) / width));
     cubes[at[0] + count[0] * (at[1] + count[1] * at[2])].push_back(g * group_size);
   }
+  // Within a cube, groups in Morton order of their centres: consecutive groups
+  // share most rows of the matrix, which then stay in cache.
+  std::vector<std::uint64_t> key(groups);
+  const double cell = width / 64.0;
+  for (Index g = 0; g < groups; ++g) {
+    std::uint64_t k = 0;
+    for (int a = 0; a < table.dimension; ++a) {
+      const auto c = static_cast<std::uint64_t>(std::min(1048575.0, (centre[g][a] - low[a]) / cell));
+      for (int bit = 0; bit < 20; ++bit) k |= ((c >> bit) & 1u) << (3 * bit + a);
+    }
+    key[g] = k;
+  }
+  for (auto& cube : cubes)
+    std::sort(cube.begin(), cube.end(),
+              [&](Index a, Index b) { return key[a / group_size] < key[b / group_size]; });
   PointSchedule schedule;
   schedule.group_size = group_size;
   schedule.colours.resize(table.dimension == 3 ? 8 : 4);

@@ -1,0 +1,106 @@
+// The global pattern and the sink that adds blocks into it: every block a body
+// visits is in the pattern, blocks land where they belong whatever the order
+// of their dofs, and a block reaching outside the pattern may only hold zeros.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include <Eigen/Dense>
+
+#include "core/check.h"
+#include "solvers/sparse_assembly.h"
+
+namespace kerf {
+namespace {
+
+/// Six 2-dof nodes on a line; blocks couple nodes {0,1,2}, {2,3} and {4,5}.
+SparseMatrix line_pattern() {
+  return build_pattern(2, 12, [](const CouplingVisitor& visit) {
+    const std::vector<std::vector<Index>> blocks = {{0, 1, 2, 3, 4, 5}, {4, 5, 6, 7}, {8, 9, 10, 11}};
+    for (const auto& dofs : blocks) visit(dofs);
+  });
+}
+
+/// A block over `dofs` whose entry (i, j) is 100 dofs[i] + dofs[j].
+std::vector<double> numbered_block(const std::vector<Index>& dofs) {
+  std::vector<double> block;
+  for (Index r : dofs)
+    for (Index c : dofs) block.push_back(100.0 * r + c);
+  return block;
+}
+
+TEST(SparseAssembly, PatternHoldsEveryVisitedPairAndTheDiagonalOnly) {
+  SparseMatrix m = line_pattern();
+  Eigen::MatrixXi structure = Eigen::MatrixXi::Zero(12, 12);
+  for (Index r = 0; r < 12; ++r)
+    for (SparseMatrix::InnerIterator it(m, r); it; ++it) structure(r, it.col()) = 1;
+  auto coupled = [](Index a, Index b) {  // nodes
+    auto in = [](Index n, std::initializer_list<Index> set) { return std::find(set.begin(), set.end(), n) != set.end(); };
+    return a == b || (in(a, {0, 1, 2}) && in(b, {0, 1, 2})) || (in(a, {2, 3}) && in(b, {2, 3})) ||
+           (in(a, {4, 5}) && in(b, {4, 5}));
+  };
+  for (Index r = 0; r < 12; ++r)
+    for (Index c = 0; c < 12; ++c) EXPECT_EQ(structure(r, c), coupled(r / 2, c / 2) ? 1 : 0) << r << " " << c;
+  EXPECT_EQ(m.norm(), 0.0);  // values start at zero
+}
+
+TEST(SparseAssembly, BlocksLandInPlaceWhateverTheOrderOfTheirDofs) {
+  for (const std::vector<Index>& dofs : {std::vector<Index>{0, 1, 2, 3, 4, 5}, std::vector<Index>{4, 5, 0, 1, 2, 3},
+                                         std::vector<Index>{5, 0, 3, 1, 4, 2}}) {
+    SparseMatrix m = line_pattern();
+    add_into(m, 2.0)(dofs, numbered_block(dofs));
+    const Eigen::MatrixXd dense(m);
+    for (Index r = 0; r < 12; ++r)
+      for (Index c = 0; c < 12; ++c)
+        EXPECT_EQ(dense(r, c), r < 6 && c < 6 ? 2.0 * (100.0 * r + c) : 0.0) << r << " " << c;
+  }
+}
+
+// Long rows: a column is sought forward from the one before by doubling steps.
+TEST(SparseAssembly, BlocksLandInPlaceInLongRows) {
+  const Index n = 64;
+  auto star = [&](const CouplingVisitor& visit) {  // every node with node 0 and with its successor
+    for (Index k = 1; k < n; ++k) {
+      visit(std::vector<Index>{0, k});
+      if (k + 1 < n) visit(std::vector<Index>{k, k + 1});
+    }
+  };
+  for (const std::vector<Index>& dofs : {std::vector<Index>{0, 1, 2, 5, 12, 13, 40, 63},
+                                         std::vector<Index>{0, 7, 8, 9, 10, 11, 12, 30, 31, 62, 63}}) {
+    SparseMatrix m = build_pattern(1, n, star);
+    std::vector<double> block = numbered_block(dofs);
+    for (std::size_t i = 1; i < dofs.size(); ++i)  // keep row 0 and column 0 and the pairs the pattern holds
+      for (std::size_t j = 1; j < dofs.size(); ++j)
+        if (std::abs(dofs[i] - dofs[j]) > 1) block[i * dofs.size() + j] = 0.0;
+    add_into(m)(dofs, block);
+    const Eigen::MatrixXd dense(m);
+    for (std::size_t i = 0; i < dofs.size(); ++i)
+      for (std::size_t j = 0; j < dofs.size(); ++j)
+        EXPECT_EQ(dense(dofs[i], dofs[j]), block[i * dofs.size() + j]) << dofs[i] << " " << dofs[j];
+    EXPECT_EQ(dense.sum(), Eigen::Map<const Eigen::VectorXd>(block.data(), block.size()).sum());
+  }
+}
+
+// A cell's Gauss points summed over the union of their nodes give a block
+// whose node pairs that share no point are zero and may lie outside the pattern.
+TEST(SparseAssembly, ZerosOutsideThePatternAreSkippedAndNonzerosRefused) {
+  const std::vector<Index> dofs = {2, 3, 4, 5, 6, 7};  // nodes 1, 2, 3: the pair (1, 3) is not in the pattern
+  std::vector<double> block = numbered_block(dofs);
+  auto outside = [](Index r, Index c) { return (r / 2 == 1 && c / 2 == 3) || (r / 2 == 3 && c / 2 == 1); };
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    for (std::size_t j = 0; j < dofs.size(); ++j)
+      if (outside(dofs[i], dofs[j])) block[i * dofs.size() + j] = 0.0;
+  SparseMatrix m = line_pattern();
+  add_into(m)(dofs, block);
+  const Eigen::MatrixXd dense(m);
+  for (Index r = 0; r < 12; ++r)
+    for (Index c = 0; c < 12; ++c) {
+      const bool in_block = r >= 2 && r < 8 && c >= 2 && c < 8 && !outside(r, c);
+      EXPECT_EQ(dense(r, c), in_block ? 100.0 * r + c : 0.0) << r << " " << c;
+    }
+  block[0 * dofs.size() + 5] = 1.0;  // (2, 7): node 1 with node 3
+  EXPECT_THROW(add_into(m)(dofs, block), Error);
+}
+
+}  // namespace
+}  // namespace kerf
