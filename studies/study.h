@@ -32,5 +32,6 @@ void timing_study(const StudyOptions& options);
 void stability_study(const StudyOptions& options);
 void pareto_study(const StudyOptions& options);
 void cut_study(const StudyOptions& options);
+void solvers_study(const StudyOptions& options);
 
 }  // namespace kerf

@@ -1,0 +1,159 @@
+// Solvers study: which linear solver an FEM implicit step should use, by size.
+//
+//   kerf study solvers [--quick] [--out DIR]
+//
+// The timing study's cube (a 10 cm cube of corotational soft tissue, E = 3
+// kPa, nu = 0.3, clamped at the bottom, sagging under gravity; implicit Euler
+// at 10 ms, one linearised solve a step as SOFA does) meshed with tet4 at
+// three sizes, about 6 000, 50 000 and 200 000 nodes (quick: about 1 000),
+// each step solved by every linear solver to the same relative tolerance:
+//   cholmod      CG preconditioned by the Cholesky factor of an earlier step's
+//                matrix (refactorized when CG stalls: kerf's default);
+//   gamg         PETSc CG + GAMG, the hierarchy rebuilt every step;
+//   gamg_reuse   the same keeping the first step's hierarchy;
+//   cg           Eigen CG with a diagonal preconditioner.
+// Read from each run's summary: the median and the largest step (the first
+// holds the factorization or the hierarchy), phases per step, linear
+// iterations. Speed is measured here, never asserted; the claims checked are
+// that every point ran and that all solvers give the same sag (the solve is
+// the only thing that differs).
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "studies/study_support.h"
+
+namespace kerf {
+namespace {
+
+struct Size {
+  std::string label;
+  double spacing;  // tet4 mesh size (m)
+  int steps;
+};
+
+struct Solver {
+  std::string label, linear_solver, petsc;
+};
+
+std::string scene_text(const Size& size, const Solver& solver) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "name: solvers\n"
+    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
+    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
+    << "discretization: {method: fem, fem: {element: tet4, size: " << size.spacing << "}}\n"
+    << "boundary:\n"
+    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
+    << "body_force: {gravity: [0, 0, -9.81]}\n"
+    << "solve:\n"
+    << "  analysis: dynamic\n"
+    << "  integrator: implicit-euler\n"
+    << "  dt: 0.01\n"
+    << "  duration: " << 0.01 * size.steps << "\n"
+    << "  newton: {max_iterations: 1}\n"
+    << "  linear_solver: " << solver.linear_solver << "\n"
+    << "  linear_tolerance: 1.0e-8\n";
+  if (!solver.petsc.empty()) s << "  petsc: '" << solver.petsc << "'\n";
+  s << "output:\n"
+    << "  vtk: false\n"
+    << "  probes:\n"
+    << "    - {name: top, point: [0.05, 0.05, 0.1], field: displacement}\n";
+  return s.str();
+}
+
+double per_step_ms(const Json& summary, const std::string& phase, int steps) {
+  const Json& phases = summary["timing"]["phases"];
+  return phases.contains(phase + "_s") ? 1e3 * phases[phase + "_s"].get<double>() / steps : 0.0;
+}
+
+}  // namespace
+
+void solvers_study(const StudyOptions& options) {
+  // 1. Sizes and solvers.
+  std::vector<Size> sizes;
+  if (options.quick)
+    sizes = {{"1k", 0.011, 3}};
+  else
+    sizes = {{"6k", 0.0054, 5}, {"50k", 0.0027, 5}, {"200k", 0.0017, 3}};
+  const std::vector<Solver> solvers{
+      {"cholmod", "cholmod", ""},
+      {"gamg", "petsc", "-ksp_type cg -pc_type gamg"},
+      {"gamg_reuse", "petsc", "-ksp_type cg -pc_type gamg -ksp_reuse_preconditioner"},
+      {"cg", "cg", ""},
+  };
+  StudyRunner runner("solvers", options, static_cast<int>(sizes.size() * solvers.size()));
+
+  // 2. Run each.
+  CsvTable table(runner.out_dir() + "/solvers.csv",
+                 {"size", "solver", "nodes", "dofs", "steps", "step_median_ms", "step_max_ms", "assembly_ms",
+                  "factorize_ms", "solve_ms", "linear_iterations_per_step", "setup_s", "top_z_m", "status"});
+  Json points = Json::array();
+  for (const Size& size : sizes)
+    for (const Solver& solver : solvers) {
+      const Json summary = runner.run(size.label + "_" + solver.label, scene_text(size, solver));
+      Json point = {{"size", size.label}, {"solver", solver.label}};
+      if (summary.value("status", "") != "ok") {
+        point["status"] = summary.value("error", std::string("failed"));
+        table.row({size.label, solver.label, Json(), Json(), size.steps, Json(), Json(), Json(), Json(), Json(),
+                   Json(), Json(), Json(), "error"});
+        points.push_back(point);
+        continue;
+      }
+      const Json& solver_report = summary["solver"];
+      const double iterations =
+          (solver_report["linear_iterations"].get<double>() + solver_report["pcg_iterations"].get<double>()) /
+          size.steps;
+      point.update({{"nodes", summary["counts"]["nodes"]},
+                    {"dofs", summary["counts"]["dofs"]},
+                    {"steps", size.steps},
+                    {"step_median_ms", summary["timing"]["step_ms"]["median"]},
+                    {"step_max_ms", summary["timing"]["step_ms"]["max"]},
+                    {"assembly_ms", per_step_ms(summary, "assembly", size.steps)},
+                    {"factorize_ms", per_step_ms(summary, "factorize", size.steps)},
+                    {"solve_ms", per_step_ms(summary, "solve", size.steps)},
+                    {"linear_iterations_per_step", iterations},
+                    {"setup_s", summary["timing"]["setup_s"]},
+                    {"top_z_m", summary["probes"]["top"]["displacement"][2]},
+                    {"status", "ok"}});
+      table.row({size.label, solver.label, point["nodes"], point["dofs"], size.steps, point["step_median_ms"],
+                 point["step_max_ms"], point["assembly_ms"], point["factorize_ms"], point["solve_ms"], iterations,
+                 point["setup_s"], point["top_z_m"], "ok"});
+      runner.say(size.label + " " + solver.label + ": median step " + point["step_median_ms"].dump() + " ms");
+      points.push_back(point);
+    }
+
+  // 3. The fastest solver at each size, written and plotted.
+  Json fastest = Json::object();
+  for (const Size& size : sizes) {
+    const Json* best = nullptr;
+    for (const Json& p : points)
+      if (p["size"] == size.label && p["status"] == "ok" &&
+          (!best || p["step_median_ms"].get<double>() < (*best)["step_median_ms"].get<double>()))
+        best = &p;
+    if (best) fastest[size.label] = (*best)["solver"];
+  }
+  write_json(runner.out_dir() + "/solvers.json", {{"study", "solvers"},
+                                                   {"quick", options.quick},
+                                                   {"fastest_by_median_step", fastest},
+                                                   {"plots", {"solvers.png"}},
+                                                   {"points", points}});
+  plot("solvers", runner.out_dir());
+
+  // 4. The claims: every point ran, and every solver gives the sag of the first.
+  for (const Size& size : sizes) {
+    const Json* reference = nullptr;
+    for (const Json& p : points) {
+      if (p["size"] != size.label) continue;
+      const std::string name = size.label + " " + p["solver"].get<std::string>();
+      check_claim(p["status"] == "ok", name + " ran (" + p["status"].get<std::string>() + ")");
+      if (!reference) reference = &p;
+      const double z = p["top_z_m"].get<double>(), z0 = (*reference)["top_z_m"].get<double>();
+      check_claim(std::abs(z - z0) <= 1e-5 * std::abs(z0),
+                  name + ": its sag " + std::to_string(z) + " m is the " + (*reference)["solver"].get<std::string>() +
+                      " run's " + std::to_string(z0) + " m to 1e-5");
+    }
+  }
+}
+
+}  // namespace kerf
