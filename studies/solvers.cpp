@@ -133,8 +133,15 @@ void solvers_study(const StudyOptions& options) {
         best = &p;
     if (best) fastest[size.label] = (*best)["solver"];
   }
+  Json headline = Json::array();
+  for (const Json& p : points)
+    if (p["status"] == "ok")
+      headline.push_back({{"what", p["solver"].get<std::string>() + " median step (" + p["nodes"].dump() + " nodes)"},
+                          {"value", p["step_median_ms"]},
+                          {"unit", "ms"}});
   write_json(runner.out_dir() + "/solvers.json", {{"study", "solvers"},
                                                    {"quick", options.quick},
+                                                   {"headline", headline},
                                                    {"fastest_by_median_step", fastest},
                                                    {"plots", {"solvers.png"}},
                                                    {"points", points}});
