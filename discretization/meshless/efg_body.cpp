@@ -195,12 +195,6 @@ void EfgBody::visit_couplings(const CouplingVisitor& visit) const {
     }
 }
 
-Eigen::MatrixXd EfgBody::point_mass(Index p) const {
-  const Index n = static_cast<Index>(points_.shapes().neighbours.of(p).size());
-  Eigen::Map<const Eigen::VectorXd> phi(points_.shapes().values_of(p), n);
-  return density_ * points_.weight(p) * phi * phi.transpose();
-}
-
 Vector EfgBody::lumped_mass() const {
   // Row sums of the consistent mass: rho int phi_I (the phi_J add up to one).
   const int dim = domain_.dimension();
@@ -216,19 +210,7 @@ Vector EfgBody::lumped_mass() const {
 }
 
 void EfgBody::consistent_mass(const BlockSink& sink) const {
-  const int dim = domain_.dimension();
-  std::vector<Index> dofs;
-  std::vector<double> block;
-  for (Index p = 0; p < points_.point_count(); ++p) {
-    Eigen::MatrixXd M = point_mass(p);
-    neighbour_dofs(points_.shapes(), p, dofs);
-    const Index n = M.rows(), size = n * dim;
-    block.assign(size * size, 0.0);
-    for (Index a = 0; a < n; ++a)
-      for (Index b = 0; b < n; ++b)
-        for (int i = 0; i < dim; ++i) block[(dim * a + i) * size + dim * b + i] = M(a, b);
-    sink(dofs, block);
-  }
+  assemble_mass_blocks(points_.shapes(), points_.schedule(), points_.weights(), density_, sink);
 }
 
 Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {

@@ -58,8 +58,6 @@ class EfgBody final : public MeshlessBody, public WeakConstraints {
                           std::vector<double>* block, std::vector<Mat3>& T) const;
   double constraint_terms(const Vector& u, Vector* f) const;
   void build_constraints(const Scene& scene);
-  /// rho phi_a phi_b w summed over the integration points, per point (scalar per node pair).
-  Eigen::MatrixXd point_mass(Index p) const;
 
   bool nitsche_;
   PointIntegration points_;

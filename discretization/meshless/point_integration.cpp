@@ -167,27 +167,32 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
 
 namespace {
 
-/// One group's summed material blocks, over the union of its points' nodes.
+/// One group's summed point blocks, over the union of its points' nodes
+/// (one point: its own neighbours in their order, the order a method's extra
+/// terms are written in).
 class GroupBlock {
  public:
-  void assemble(const ShapeTable& table, Index begin, Index end, std::span<const double> weights,
-                const MaterialLaw& law, const Vector& u) {
+  void assemble(const ShapeTable& table, Index begin, Index end, const PointBlockTerm& term) {
     const int dim = table.dimension;
     nodes_.clear();
     for (Index p = begin; p < end; ++p) {
       auto near = table.neighbours.of(p);
       nodes_.insert(nodes_.end(), near.begin(), near.end());
     }
-    std::sort(nodes_.begin(), nodes_.end());
-    nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+    if (end - begin > 1) {
+      std::sort(nodes_.begin(), nodes_.end());
+      nodes_.erase(std::unique(nodes_.begin(), nodes_.end()), nodes_.end());
+    }
     const Index count = static_cast<Index>(nodes_.size());
     block_.assign(static_cast<std::size_t>(count * dim) * (count * dim), 0.0);
     for (Index p = begin; p < end; ++p) {
       place_.clear();
-      for (Index J : table.neighbours.of(p))
-        place_.push_back(static_cast<Index>(std::lower_bound(nodes_.begin(), nodes_.end(), J) - nodes_.begin()));
-      law.stress_and_tangent(deformation_gradient(table, p, u), P_, dPdF_);
-      add_material_block(table, p, dPdF_, weights[p], place_, count, block_);
+      if (end - begin == 1)
+        for (Index k = 0; k < count; ++k) place_.push_back(k);
+      else
+        for (Index J : table.neighbours.of(p))
+          place_.push_back(static_cast<Index>(std::lower_bound(nodes_.begin(), nodes_.end(), J) - nodes_.begin()));
+      term(p, place_, count, block_);
     }
     dofs_.clear();
     for (Index J : nodes_)
@@ -199,38 +204,18 @@ class GroupBlock {
  private:
   std::vector<Index> nodes_, place_, dofs_;
   std::vector<double> block_;
-  Mat3 P_;
-  Mat9 dPdF_;
 };
-
-/// One point's block over its own neighbours, in their order (the order a
-/// method's extra terms are written in).
-void point_block(const ShapeTable& table, Index p, std::span<const double> weights, const MaterialLaw& law,
-                 const Vector& u, std::vector<Index>& place, std::vector<Index>& dofs, std::vector<double>& block) {
-  neighbour_dofs(table, p, dofs);
-  block.assign(dofs.size() * dofs.size(), 0.0);
-  const Index n = static_cast<Index>(table.neighbours.of(p).size());
-  place.resize(n);
-  for (Index k = 0; k < n; ++k) place[k] = k;
-  Mat3 P;
-  Mat9 dPdF;
-  law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
-  add_material_block(table, p, dPdF, weights[p], place, n, block);
-}
 
 }  // namespace
 
-void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
-                              const MaterialLaw& law, const Vector& u, const BlockSink& sink,
-                              const BlockExtra& extra) {
+void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedule, const PointBlockTerm& term,
+                           const BlockSink& sink, const BlockExtra& extra) {
   KERF_CHECK(!extra || schedule.group_size == 1, "internal: a method's extra terms need one point a group");
   const Index P = table.point_count();
   std::exception_ptr failure;  // an exception must not leave an OpenMP region
 #pragma omp parallel
   {
     GroupBlock group;
-    std::vector<Index> place, dofs;
-    std::vector<double> block;
     for (const auto& colour : schedule.colours) {
 #pragma omp for schedule(dynamic, 1)
       for (std::size_t c = 0; c < colour.size(); ++c) {
@@ -238,14 +223,9 @@ void assemble_material_blocks(const ShapeTable& table, const PointSchedule& sche
           // No other thread writes these dofs now: this colour's cubes share no node.
           for (Index first : colour[c]) {
             const auto [begin, end] = group_points(first, schedule.group_size, P);
-            if (end - begin > 1) {
-              group.assemble(table, begin, end, weights, law, u);
-              sink(group.dofs(), group.block());
-              continue;
-            }
-            point_block(table, begin, weights, law, u, place, dofs, block);
-            if (extra) extra(begin, block);
-            sink(dofs, block);
+            group.assemble(table, begin, end, term);
+            if (extra) extra(begin, group.block());
+            sink(group.dofs(), group.block());
           }
         } catch (...) {
 #pragma omp critical(kerf_meshless_failure)
@@ -255,6 +235,36 @@ void assemble_material_blocks(const ShapeTable& table, const PointSchedule& sche
     }
   }
   if (failure) std::rethrow_exception(failure);
+}
+
+void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
+                              const MaterialLaw& law, const Vector& u, const BlockSink& sink,
+                              const BlockExtra& extra) {
+  const PointBlockTerm material = [&](Index p, std::span<const Index> place, Index block_nodes,
+                                      std::vector<double>& block) {
+    Mat3 P;
+    Mat9 dPdF;
+    law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
+    add_material_block(table, p, dPdF, weights[p], place, block_nodes, block);
+  };
+  assemble_point_blocks(table, schedule, material, sink, extra);
+}
+
+void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
+                          double density, const BlockSink& sink) {
+  const int dim = table.dimension;
+  const PointBlockTerm mass = [&](Index p, std::span<const Index> place, Index block_nodes,
+                                  std::vector<double>& block) {
+    const double* phi = table.values_of(p);
+    const Index n = static_cast<Index>(place.size()), size = dim * block_nodes;
+    const double scale = density * weights[p];
+    for (Index a = 0; a < n; ++a)
+      for (Index b = 0; b < n; ++b) {
+        const double m = scale * phi[a] * phi[b];
+        for (int i = 0; i < dim; ++i) block[(dim * place[a] + i) * size + dim * place[b] + i] += m;
+      }
+  };
+  assemble_point_blocks(table, schedule, mass, sink);
 }
 
 }  // namespace kerf

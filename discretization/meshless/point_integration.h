@@ -39,13 +39,27 @@ struct PointSchedule {
 };
 PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size = 1);
 
-/// K(u) of every point (weight w_p, the law's tangent at F_p, plus `extra`
-/// when given: groups of one point only) into the sink: colour by colour, the
-/// cubes of a colour in parallel, each cube's groups in order (the sum in each
-/// entry does not depend on the thread count).
+/// Adds one point's term into the block of its group: the point's k-th
+/// neighbour is node place[k] of the block's block_nodes.
+using PointBlockTerm =
+    std::function<void(Index point, std::span<const Index> place, Index block_nodes, std::vector<double>& block)>;
+
+/// Every point's term into the sink, a group's points summed first: colour by
+/// colour, the cubes of a colour in parallel, each cube's groups in order (the
+/// sum in each entry does not depend on the thread count). `extra` (groups of
+/// one point only) adds a method's own terms to the point's block.
+void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedule, const PointBlockTerm& term,
+                           const BlockSink& sink, const BlockExtra& extra = {});
+
+/// K(u) of every point (weight w_p, the law's tangent at F_p, plus `extra`)
+/// into the sink, by assemble_point_blocks.
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                               const MaterialLaw& law, const Vector& u, const BlockSink& sink,
                               const BlockExtra& extra = {});
+
+/// The consistent mass rho w_p phi_a phi_b (times the identity) of every point into the sink.
+void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
+                          double density, const BlockSink& sink);
 
 /// Gauss points with weights, and for each node the slots where it appears.
 class PointIntegration {

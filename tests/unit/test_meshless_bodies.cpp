@@ -12,6 +12,7 @@
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
 #include "discretization/meshless/point_integration.h"
+#include "solvers/sparse_assembly.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -209,6 +210,16 @@ TEST(MeshlessBodies, MassesAndLoadsAddUpToTheirTotals) {
       const double volume = dim == 3 ? 0.03 * 0.02 * 0.02 : 0.03 * 0.02, area = dim == 3 ? 0.02 * 0.02 : 0.02;
       const Vector m = body->lumped_mass();
       EXPECT_NEAR(m.sum() / dim, 1000.0 * volume, 1e-10 * volume) << method << dim;
+      // The consistent mass: symmetric, its rows sum to the lumped mass (the phi
+      // add up to one), no coupling between directions.
+      SparseMatrix M = build_pattern(*body);
+      body->consistent_mass(add_into(M));
+      const SparseMatrix MT = M.transpose();
+      EXPECT_LT((M - MT).norm(), 1e-14 * M.norm()) << method << dim;
+      Vector x_only = Vector::Zero(body->dof_count());
+      for (Index n = 0; n < body->node_count(); ++n) x_only[dim * n] = 1.0;
+      const Vector pushed = M * x_only, expected_push = m.cwiseProduct(x_only);
+      EXPECT_LT((pushed - expected_push).norm(), 1e-12 * m.norm()) << method << dim;
       Vector load;
       body->external_force(0.0, load);
       Vec3 total = Vec3::Zero();
