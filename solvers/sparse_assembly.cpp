@@ -94,7 +94,8 @@ namespace {
 /// after `from`: tried there first, then by doubling steps and a binary search.
 Index search_forward(const Index* begin, const Index* end, Index from, Index column) {
   const Index length = static_cast<Index>(end - begin);
-  if (from < length && begin[from] >= column) return from;
+  if (from >= length) return length;  // past the row's last entry: absent
+  if (begin[from] >= column) return from;
   Index step = 1, low = from;  // begin[low] < column
   while (low + step < length && begin[low + step] < column) low += step, step *= 2;
   const Index high = std::min(length, low + step);  // begin[high] >= column, or the row's end

@@ -62,11 +62,6 @@ std::string scene_text(const Size& size, const Solver& solver) {
   return s.str();
 }
 
-double per_step_ms(const Json& summary, const std::string& phase, int steps) {
-  const Json& phases = summary["timing"]["phases"];
-  return phases.contains(phase + "_s") ? 1e3 * phases[phase + "_s"].get<double>() / steps : 0.0;
-}
-
 }  // namespace
 
 void solvers_study(const StudyOptions& options) {
@@ -109,9 +104,9 @@ void solvers_study(const StudyOptions& options) {
                     {"steps", size.steps},
                     {"step_median_ms", summary["timing"]["step_ms"]["median"]},
                     {"step_max_ms", summary["timing"]["step_ms"]["max"]},
-                    {"assembly_ms", per_step_ms(summary, "assembly", size.steps)},
-                    {"factorize_ms", per_step_ms(summary, "factorize", size.steps)},
-                    {"solve_ms", per_step_ms(summary, "solve", size.steps)},
+                    {"assembly_ms", phase_ms_per_step(summary, "assembly", size.steps)},
+                    {"factorize_ms", phase_ms_per_step(summary, "factorize", size.steps)},
+                    {"solve_ms", phase_ms_per_step(summary, "solve", size.steps)},
                     {"linear_iterations_per_step", iterations},
                     {"setup_s", summary["timing"]["setup_s"]},
                     {"top_z_m", summary["probes"]["top"]["displacement"][2]},

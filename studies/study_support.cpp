@@ -52,6 +52,11 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
   return summary;
 }
 
+double phase_ms_per_step(const Json& summary, const std::string& phase, int steps) {
+  const Json& phases = summary["timing"]["phases"];
+  return phases.contains(phase + "_s") ? 1e3 * phases[phase + "_s"].get<double>() / steps : 0.0;
+}
+
 void StudyRunner::say(const std::string& text) const {
   if (!quiet_) std::fprintf(stderr, "%s: %s\n", study_.c_str(), text.c_str());
 }

@@ -49,6 +49,9 @@ class CsvTable {
 using ProbeHistory = std::map<std::string, std::vector<double>>;
 ProbeHistory read_probe_history(const std::string& run_dir);
 
+/// A phase's mean milliseconds a step, from a run's summary (0 when absent).
+double phase_ms_per_step(const Json& summary, const std::string& phase, int steps);
+
 /// Runs studies/plots/<script>.py on the study's folder with /usr/bin/python3.
 void plot(const std::string& script, const std::string& out_dir);
 
