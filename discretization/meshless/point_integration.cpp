@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <exception>
 #include <limits>
 #include <utility>
@@ -138,21 +137,6 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
       at[a] = std::min(count[a] - 1, static_cast<Index>((centre[g][a] - low[a]) / width));
     cubes[at[0] + count[0] * (at[1] + count[1] * at[2])].push_back(g * group_size);
   }
-  // Within a cube, groups in Morton order of their centres: consecutive groups
-  // share most rows of the matrix, which then stay in cache.
-  std::vector<std::uint64_t> key(groups);
-  const double cell = width / 64.0;
-  for (Index g = 0; g < groups; ++g) {
-    std::uint64_t k = 0;
-    for (int a = 0; a < table.dimension; ++a) {
-      const auto c = static_cast<std::uint64_t>(std::min(1048575.0, (centre[g][a] - low[a]) / cell));
-      for (int bit = 0; bit < 20; ++bit) k |= ((c >> bit) & 1u) << (3 * bit + a);
-    }
-    key[g] = k;
-  }
-  for (auto& cube : cubes)
-    std::sort(cube.begin(), cube.end(),
-              [&](Index a, Index b) { return key[a / group_size] < key[b / group_size]; });
   PointSchedule schedule;
   schedule.group_size = group_size;
   schedule.colours.resize(table.dimension == 3 ? 8 : 4);
