@@ -8,6 +8,7 @@
 #include "kerf/version.h"
 #include "problem/scene_json.h"
 #include "problem/scene_reader.h"
+#include "solvers/petsc_session.h"
 #include "studies/study.h"
 
 namespace kerf {
@@ -69,11 +70,23 @@ int study_command(const Arguments& a) {
   return 0;
 }
 
+/// Under mpirun only PETSc's solvers share a linear solve between ranks: a
+/// serial one is refused before any work (explicit runs solve nothing).
+void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
+  const bool solves = scene.solve.analysis == Analysis::static_analysis ||
+                      scene.solve.integrator != Integrator::central_difference;
+  if (ranks == 1 || !solves || scene.solve.linear_solver == LinearSolverKind::petsc) return;
+  throw Error(scene.locate("solve.linear_solver").describe() + ": " + to_string(scene.solve.linear_solver) +
+              " cannot run on " + std::to_string(ranks) +
+              " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
   Arguments a;
   Scene scene;
+  MpiRanks ranks;
   try {
     a = parse(args);
     if (a.command == "--version" || a.command == "version") {
@@ -87,14 +100,17 @@ int run_command_line(const std::vector<std::string>& args) {
     if (a.command == "study") return study_command(a);
     KERF_CHECK(a.command == "run" || a.command == "check", "unknown command '", a.command, "'\n", usage);
     KERF_CHECK(!a.target.empty(), a.command, " needs a scene file\n", usage);
+    ranks = mpi_ranks();
     scene = read_scene(a.target, a.overrides);
     refuse_unrunnable(scene);
+    refuse_serial_solver_on_ranks(scene, ranks.count);
     if (a.command == "check") {
       std::cout << scene_to_json(scene).dump(2) << "\n";
       return 0;
     }
   } catch (const std::exception& e) {
-    std::cerr << "kerf: error: " << e.what() << "\n";
+    // Every rank reads the same scene and fails alike: rank 0 says why.
+    if (ranks.rank == 0) std::cerr << "kerf: error: " << e.what() << "\n";
     return 2;
   }
   try {

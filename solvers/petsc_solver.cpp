@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "solvers/petsc_session.h"
 
 namespace kerf {
 namespace {
@@ -16,16 +17,6 @@ void check(PetscErrorCode code, const char* call) {
   PetscErrorMessage(code, &text, nullptr);
   throw Error(std::string("petsc: ") + call + " failed: " + (text ? text : "unknown error") +
               " (code " + std::to_string(code) + ")");
-}
-
-void ensure_petsc_initialized() {
-  PetscBool initialized = PETSC_FALSE;
-  check(PetscInitialized(&initialized), "PetscInitialized");
-  if (initialized) return;
-  // kerf reports its own errors; PETSc must not take over signals.
-  check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
-  check(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
-  std::atexit([] { PetscFinalize(); });
 }
 
 class PetscSolver final : public LinearSolver {

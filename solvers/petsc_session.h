@@ -1,0 +1,23 @@
+#pragma once
+// PETSc, and through it MPI, for the whole process: started by the first
+// PETSc solver, or at once when an MPI launcher started the process, so that
+// every rank knows how many there are before any work. kerf passes no message
+// of its own: PETSc is the only message passing.
+
+namespace kerf {
+
+/// Starts PETSc once (no signal handlers: kerf reports its own errors);
+/// finalized at exit.
+void ensure_petsc_initialized();
+
+struct MpiRanks {
+  int rank = 0;
+  int count = 1;
+};
+
+/// This process's rank among those mpirun started (Open MPI or another PMIx
+/// launcher: PETSc is then started here); 0 of 1 without a launcher, and
+/// PETSc is left unstarted.
+MpiRanks mpi_ranks();
+
+}  // namespace kerf
