@@ -116,9 +116,11 @@ int run_command_line(const std::vector<std::string>& args) {
   try {
     RunOptions options;
     options.out_dir = a.out;
-    options.quiet = a.quiet;
+    // Under mpirun every rank runs the scene; rank 0 alone prints and writes.
+    options.quiet = a.quiet || ranks.rank != 0;
+    options.writes_files = ranks.rank == 0;
     RunOutcome outcome = run_scene(scene, options);
-    if (!a.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
+    if (!options.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "kerf: error: " << e.what() << "\n";

@@ -14,8 +14,11 @@ std::vector<std::string> table_columns(const ProbeSet& probes) {
 
 }  // namespace
 
-RunObserver::RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes)
-    : cuts_(std::move(cuts)), table_(directory + "/probes.csv", table_columns(probes)) {
+RunObserver::RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes,
+                         bool writes_files)
+    : cuts_(std::move(cuts)) {
+  if (!writes_files) return;
+  table_.emplace(directory + "/probes.csv", table_columns(probes));
   if (scene.output.vtk_every > 0) vtk_ = std::make_unique<VtkSeries>(directory, scene.name);
 }
 
@@ -45,7 +48,7 @@ void RunObserver::write(const RunParts& run, const SolverState& state, std::size
   }
   std::vector<double> row = probes.values(state, reaction_, energy_);
   row.insert(row.begin(), state.t);
-  table_.append(row);
+  if (table_) table_->append(row);
   if (vtk_) {
     const Vector& u = run.mechanics->body_part(state.u, body_u_);
     BodySnapshot body, cut;

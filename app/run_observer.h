@@ -5,6 +5,7 @@
 // loads did step by step for the energy probe.
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "app/run_parts.h"
@@ -17,8 +18,10 @@ namespace kerf {
 class RunObserver {
  public:
   /// Opens probes.csv (its columns from `probes`) and, when the scene asks
-  /// for ParaView output, the series, in `directory`.
-  RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes);
+  /// for ParaView output, the series, in `directory`; with `writes_files`
+  /// false (an MPI rank other than 0) it evaluates the same and writes nothing.
+  RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes,
+              bool writes_files = true);
 
   /// The loads the next step starts from: at the start, and after a cut
   /// changed the discretization (the loads as the new one integrates them).
@@ -36,7 +39,7 @@ class RunObserver {
  private:
   SharedCuts cuts_;
   std::unique_ptr<VtkSeries> vtk_;
-  ProbeTable table_;
+  std::optional<ProbeTable> table_;
   EnergyState energy_;
   std::size_t lattices_written_at_ = static_cast<std::size_t>(-1);  // growths when the grids were last written
   Vector reaction_, load_before_, load_after_, u_before_, body_u_;

@@ -95,13 +95,14 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   const SharedCuts cuts = refuse_unrunnable(scene);
   RunOutcome outcome;
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  std::filesystem::create_directories(outcome.directory);
+  const bool writes = options.writes_files;
+  if (writes) std::filesystem::create_directories(outcome.directory);
   const std::string summary_path = outcome.directory + "/summary.json";
   Scene resolved = scene;
   resolved.output.dir = outcome.directory;
   json& summary = outcome.summary;
   summary = {{"kerf_version", version}, {"scene", scene_to_json(resolved)}, {"status", "running"}};
-  write_file_atomically(summary_path, summary.dump(2));
+  if (writes) write_file_atomically(summary_path, summary.dump(2));
 
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
@@ -110,7 +111,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     SolverState state;
     RunParts run = set_up(scene, cuts, state, report);
     report.setup_seconds = now_seconds() - start;
-    RunObserver observer(scene, outcome.directory, cuts, *run.probes);
+    RunObserver observer(scene, outcome.directory, cuts, *run.probes, writes);
     observer.write(run, state, 0, report);
     const double loop_start = now_seconds();
     step(scene, cuts, run, state, observer, report, summary, options.quiet);
@@ -118,12 +119,12 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
     write_report(report, summary);
     summary["status"] = "ok";
-    write_file_atomically(summary_path, summary.dump(2));
+    if (writes) write_file_atomically(summary_path, summary.dump(2));
   } catch (const std::exception& e) {
     write_report(report, summary);
     summary["status"] = "error";
     summary["error"] = e.what();
-    write_file_atomically(summary_path, summary.dump(2));
+    if (writes) write_file_atomically(summary_path, summary.dump(2));
     throw;
   }
   return outcome;

@@ -12,6 +12,7 @@ namespace kerf {
 struct RunOptions {
   std::string out_dir;  // overrides output.dir when not empty
   bool quiet = false;
+  bool writes_files = true;  // false: the run is the same, nothing is written (MPI ranks other than 0)
 };
 
 struct RunOutcome {
