@@ -10,10 +10,6 @@
 namespace kerf {
 namespace {
 
-void check(PetscErrorCode code, const char* call) {
-  KERF_CHECK(code == 0, "petsc: ", call, " failed (code ", code, ")");
-}
-
 bool launched_by_mpi() {
   return std::getenv("OMPI_COMM_WORLD_SIZE") != nullptr || std::getenv("PMIX_RANK") != nullptr ||
          std::getenv("PMI_SIZE") != nullptr;
@@ -21,12 +17,21 @@ bool launched_by_mpi() {
 
 }  // namespace
 
+void check_petsc(int code, const char* call) {
+  if (code == 0) return;
+  const char* text = nullptr;
+  PetscErrorMessage(code, &text, nullptr);
+  throw Error(std::string("petsc: ") + call + " failed: " + (text ? text : "unknown error") + " (code " +
+              std::to_string(code) + ")");
+}
+
 void ensure_petsc_initialized() {
   PetscBool initialized = PETSC_FALSE;
-  check(PetscInitialized(&initialized), "PetscInitialized");
+  check_petsc(PetscInitialized(&initialized), "PetscInitialized");
   if (initialized) return;
-  check(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
-  check(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
+  // kerf reports its own errors; PETSc must not take over signals.
+  check_petsc(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
+  check_petsc(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
   std::atexit([] { PetscFinalize(); });
 }
 
@@ -34,8 +39,8 @@ MpiRanks mpi_ranks() {
   if (!launched_by_mpi()) return {};
   ensure_petsc_initialized();
   PetscMPIInt rank = 0, size = 1;
-  check(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
-  check(MPI_Comm_size(PETSC_COMM_WORLD, &size), "MPI_Comm_size");
+  check_petsc(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
+  check_petsc(MPI_Comm_size(PETSC_COMM_WORLD, &size), "MPI_Comm_size");
   return {rank, size};
 }
 

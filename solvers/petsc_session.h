@@ -6,6 +6,9 @@
 
 namespace kerf {
 
+/// Throws naming the PETSc (or MPI) call and PETSc's message when `code` is not 0.
+void check_petsc(int code, const char* call);
+
 /// Starts PETSc once (no signal handlers: kerf reports its own errors);
 /// finalized at exit.
 void ensure_petsc_initialized();

@@ -11,14 +11,6 @@
 namespace kerf {
 namespace {
 
-void check(PetscErrorCode code, const char* call) {
-  if (code == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw Error(std::string("petsc: ") + call + " failed: " + (text ? text : "unknown error") +
-              " (code " + std::to_string(code) + ")");
-}
-
 class PetscSolver final : public LinearSolver {
  public:
   PetscSolver(std::string options, double tolerance) : options_(std::move(options)), tolerance_(tolerance) {
@@ -38,13 +30,13 @@ class PetscSolver final : public LinearSolver {
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     const PetscInt n = static_cast<PetscInt>(pattern.rows());
     PetscInt local = PETSC_DECIDE, global = n;
-    check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
-    check(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
-    check(MatSetSizes(matrix_, local, local, n, n), "MatSetSizes");
-    check(MatSetType(matrix_, MATAIJ), "MatSetType");
+    check_petsc(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
+    check_petsc(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
+    check_petsc(MatSetSizes(matrix_, local, local, n, n), "MatSetSizes");
+    check_petsc(MatSetType(matrix_, MATAIJ), "MatSetType");
     PetscInt first = 0, end = 0;
-    check(MatSetUp(matrix_), "MatSetUp");
-    check(MatGetOwnershipRange(matrix_, &first, &end), "MatGetOwnershipRange");
+    check_petsc(MatSetUp(matrix_), "MatSetUp");
+    check_petsc(MatGetOwnershipRange(matrix_, &first, &end), "MatGetOwnershipRange");
     // Diagonal-block and off-diagonal-block counts of the rows this rank owns.
     std::vector<PetscInt> d_nnz(end - first, 0), o_nnz(end - first, 0);
     for (PetscInt r = first; r < end; ++r)
@@ -52,22 +44,22 @@ class PetscSolver final : public LinearSolver {
         PetscInt c = pattern.innerIndexPtr()[p];
         (c >= first && c < end ? d_nnz : o_nnz)[r - first]++;
       }
-    check(MatXAIJSetPreallocation(matrix_, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr),
+    check_petsc(MatXAIJSetPreallocation(matrix_, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr),
           "MatXAIJSetPreallocation");
-    check(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
-    check(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+    check_petsc(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+    check_petsc(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
     first_ = first;
     end_ = end;
-    check(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
+    check_petsc(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
     attach_near_null_space();
-    check(VecScatterCreateToAll(x_, &gather_, &all_), "VecScatterCreateToAll");
+    check_petsc(VecScatterCreateToAll(x_, &gather_, &all_), "VecScatterCreateToAll");
 
-    check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
-    check(KSPSetTolerances(ksp_, tolerance_, 1e-50, PETSC_DEFAULT, 10000), "KSPSetTolerances");
-    check(PetscOptionsClear(nullptr), "PetscOptionsClear");
+    check_petsc(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
+    check_petsc(KSPSetTolerances(ksp_, tolerance_, 1e-50, PETSC_DEFAULT, 10000), "KSPSetTolerances");
+    check_petsc(PetscOptionsClear(nullptr), "PetscOptionsClear");
     PetscErrorCode code = PetscOptionsInsertString(nullptr, options_.c_str());
     if (code) return LinearSolverStatus::failure("petsc: cannot parse the options '" + options_ + "'");
-    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    check_petsc(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
     return LinearSolverStatus::success();
   }
 
@@ -76,11 +68,11 @@ class PetscSolver final : public LinearSolver {
     for (PetscInt r = first_; r < end_; ++r) {
       Index begin = A.outerIndexPtr()[r], count = A.outerIndexPtr()[r + 1] - begin;
       cols.assign(A.innerIndexPtr() + begin, A.innerIndexPtr() + begin + count);
-      check(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, INSERT_VALUES), "MatSetValues");
+      check_petsc(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, INSERT_VALUES), "MatSetValues");
     }
-    check(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
-    check(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    check_petsc(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+    check_petsc(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+    check_petsc(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
     PetscErrorCode code = KSPSetUp(ksp_);
     if (code) {
       const char* text = nullptr;
@@ -93,11 +85,11 @@ class PetscSolver final : public LinearSolver {
       PetscInt count = 0;
       char** names = nullptr;
       char** values = nullptr;
-      check(PetscOptionsLeftGet(nullptr, &count, &names, &values), "PetscOptionsLeftGet");
+      check_petsc(PetscOptionsLeftGet(nullptr, &count, &names, &values), "PetscOptionsLeftGet");
       std::string unused;
       for (PetscInt i = 0; i < count; ++i)
         if (std::string(names[i]) != "no_signal_handler") unused += " -" + std::string(names[i]);
-      check(PetscOptionsLeftRestore(nullptr, &count, &names, &values), "PetscOptionsLeftRestore");
+      check_petsc(PetscOptionsLeftRestore(nullptr, &count, &names, &values), "PetscOptionsLeftRestore");
       if (!unused.empty())
         return LinearSolverStatus::failure("petsc: option(s)" + unused + " in '" + options_ +
                                            "' were never used: misspelled, or not for this KSP/PC");
@@ -107,24 +99,24 @@ class PetscSolver final : public LinearSolver {
 
   LinearSolverStatus solve(const Vector& b, Vector& x) override {
     PetscScalar* bb = nullptr;
-    check(VecGetArray(b_, &bb), "VecGetArray");
+    check_petsc(VecGetArray(b_, &bb), "VecGetArray");
     for (PetscInt r = first_; r < end_; ++r) bb[r - first_] = b[r];
-    check(VecRestoreArray(b_, &bb), "VecRestoreArray");
-    check(KSPSolve(ksp_, b_, x_), "KSPSolve");
+    check_petsc(VecRestoreArray(b_, &bb), "VecRestoreArray");
+    check_petsc(KSPSolve(ksp_, b_, x_), "KSPSolve");
     KSPConvergedReason reason;
-    check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
+    check_petsc(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
     PetscInt iterations = 0;
-    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    check_petsc(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
     iterations_ = static_cast<int>(iterations);
     if (reason < 0)
       return LinearSolverStatus::failure(std::string("petsc: KSP diverged (") + KSPConvergedReasons[reason] +
                                          ") after " + std::to_string(iterations) + " iterations");
-    check(VecScatterBegin(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    check(VecScatterEnd(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    check_petsc(VecScatterBegin(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check_petsc(VecScatterEnd(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
     const PetscScalar* xa = nullptr;
-    check(VecGetArrayRead(all_, &xa), "VecGetArrayRead");
+    check_petsc(VecGetArrayRead(all_, &xa), "VecGetArrayRead");
     x = Eigen::Map<const Vector>(xa, b.size());
-    check(VecRestoreArrayRead(all_, &xa), "VecRestoreArrayRead");
+    check_petsc(VecRestoreArrayRead(all_, &xa), "VecRestoreArrayRead");
     return LinearSolverStatus::success();
   }
   int last_iterations() const override { return iterations_; }
@@ -136,19 +128,19 @@ class PetscSolver final : public LinearSolver {
     if (near_null_space_.empty()) return;
     std::vector<Vec> vectors(near_null_space_.size());
     for (std::size_t k = 0; k < vectors.size(); ++k) {
-      check(VecDuplicate(x_, &vectors[k]), "VecDuplicate");
+      check_petsc(VecDuplicate(x_, &vectors[k]), "VecDuplicate");
       PetscScalar* v = nullptr;
-      check(VecGetArray(vectors[k], &v), "VecGetArray");
+      check_petsc(VecGetArray(vectors[k], &v), "VecGetArray");
       for (PetscInt r = first_; r < end_; ++r) v[r - first_] = near_null_space_[k][r];
-      check(VecRestoreArray(vectors[k], &v), "VecRestoreArray");
+      check_petsc(VecRestoreArray(vectors[k], &v), "VecRestoreArray");
     }
     MatNullSpace space = nullptr;
-    check(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
+    check_petsc(MatNullSpaceCreate(PETSC_COMM_WORLD, PETSC_FALSE, static_cast<PetscInt>(vectors.size()), vectors.data(),
                              &space),
           "MatNullSpaceCreate");
-    check(MatSetNearNullSpace(matrix_, space), "MatSetNearNullSpace");
-    check(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
-    for (Vec& v : vectors) check(VecDestroy(&v), "VecDestroy");
+    check_petsc(MatSetNearNullSpace(matrix_, space), "MatSetNearNullSpace");
+    check_petsc(MatNullSpaceDestroy(&space), "MatNullSpaceDestroy");
+    for (Vec& v : vectors) check_petsc(VecDestroy(&v), "VecDestroy");
   }
 
   std::vector<Vector> near_null_space_;
