@@ -1,7 +1,12 @@
 #include "app/cli.h"
 
+#include <omp.h>
+
+#include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
+#include <thread>
 
 #include "app/run_scene.h"
 #include "core/check.h"
@@ -81,12 +86,31 @@ void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
               " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");
 }
 
+/// Ranks on one machine share its cores: each runs as many OpenMP threads as
+/// its share (one when there are more ranks than cores), unless the user set
+/// OMP_NUM_THREADS.
+void share_cores_among_local_ranks(const RankShare& ranks) {
+  if (!ranks.distributed() || std::getenv("OMP_NUM_THREADS")) return;
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  const int local_ranks = local ? std::max(1, std::atoi(local)) : ranks.count;
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  omp_set_num_threads(std::max(1, cores / local_ranks));
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
   Arguments a;
   Scene scene;
-  MpiRanks ranks;
+  RankShare ranks;
+  try {
+    ranks = mpi_ranks();  // first: under mpirun, even a usage error is printed once
+  } catch (const std::exception& e) {
+    std::cerr << "kerf: error: " << e.what() << "\n";
+    return 1;
+  }
+  set_process_ranks(ranks);
+  share_cores_among_local_ranks(ranks);
   try {
     a = parse(args);
     if (a.command == "--version" || a.command == "version") {
@@ -100,7 +124,6 @@ int run_command_line(const std::vector<std::string>& args) {
     if (a.command == "study") return study_command(a);
     KERF_CHECK(a.command == "run" || a.command == "check", "unknown command '", a.command, "'\n", usage);
     KERF_CHECK(!a.target.empty(), a.command, " needs a scene file\n", usage);
-    ranks = mpi_ranks();
     scene = read_scene(a.target, a.overrides);
     refuse_unrunnable(scene);
     refuse_serial_solver_on_ranks(scene, ranks.count);

@@ -10,6 +10,7 @@
 #include "app/run_observer.h"
 #include "app/run_parts.h"
 #include "app/summary_json.h"
+#include "core/rank_share.h"
 #include "core/check.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
@@ -48,6 +49,9 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, 
   run.stepper->initialize(state);  // timed inside as assembly and factorize
   report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
                    run.body->mean_neighbors()};
+  const RowShare& share = run.mechanics->dof_share();
+  report.parallel = {process_ranks().count, share.partial, share.owned_end - share.owned_begin,
+                     static_cast<Index>(share.touched.size())};
   return run;
 }
 

@@ -1,5 +1,7 @@
 #include "app/summary_json.h"
 
+#include <sys/resource.h>
+
 #include <algorithm>
 
 namespace kerf {
@@ -41,12 +43,25 @@ json solver_counters(const RunReport& report) {
   return out;
 }
 
+/// This process's largest resident set so far (MB).
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
+}
+
 }  // namespace
 
 void write_report(const RunReport& report, json& summary) {
   const RunCounts& n = report.counts;
   summary["counts"] = {
       {"nodes", n.nodes}, {"dofs", n.dofs}, {"elements", n.elements}, {"neighbors_mean", n.neighbors_mean}};
+  const RankCounts& r = report.parallel;
+  summary["parallel"] = {{"ranks", r.ranks},
+                         {"partitioned", r.partitioned},
+                         {"rank0_owned_rows", r.owned_rows},
+                         {"rank0_touched_rows", r.touched_rows},
+                         {"rank0_peak_memory_mb", peak_memory_mb()}};
   json phases = json::object();
   for (std::size_t p = 0; p < phase_names.size(); ++p)
     phases[std::string(phase_names[p]) + "_s"] = report.phases.seconds(static_cast<Phase>(p));

@@ -22,6 +22,14 @@ struct RunCounts {
   double neighbors_mean = 0.0;  // other nodes a node is coupled to
 };
 
+/// How the MPI ranks shared the run (summary "parallel"), as rank 0 saw it.
+struct RankCounts {
+  int ranks = 1;
+  bool partitioned = false;  // each rank assembled its own cells (else every rank the whole)
+  Index owned_rows = 0;      // rank 0's rows
+  Index touched_rows = 0;    // rows rank 0 computes values in: its own and its ghosts'
+};
+
 /// The solvers' work over the run (summary "solver"; zero when a run had none).
 struct SolverCounters {
   long factorizations = 0;         // numeric factorizations or preconditioner set-ups
@@ -47,6 +55,7 @@ struct RunReport {
   PhaseTimes phases;
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
   RunCounts counts;
+  RankCounts parallel;
   SolverCounters solver;
   CutCounters cuts;
   std::vector<double> step_seconds;         // wall time of each time step (or load step)

@@ -12,8 +12,10 @@
 //   ElementStepBound       fem               a cheap safe explicit step
 //   MeshedBody             fem               the mesh a state is carried onto
 //   MatrixAssembly         fem               K written straight into a CSR matrix
+//   PartitionedAssembly    fem               under MPI, only this rank's cells
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "discretization/discrete_body.h"
@@ -112,6 +114,22 @@ class MatrixAssembly {
   /// `matrix` holds every block tangent() writes, and a pattern once seen
   /// must not change in place.
   virtual void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const = 0;
+};
+
+/// A body that, under several MPI ranks, computes only its rank's part:
+/// internal_force, tangent, add_tangent_into, strain_energy and both masses
+/// then hold the contributions of this rank's cells alone (partial sums over
+/// all dofs), which MechanicalSystem adds up across the ranks. Loads,
+/// constraints, probes and snapshots stay whole on every rank.
+class PartitionedAssembly {
+ public:
+  virtual ~PartitionedAssembly() = default;
+  /// Whether the body computes a part (false: the whole, as a serial run does).
+  virtual bool partitioned() const = 0;
+  /// [begin, end) of the nodes this rank owns: their rows are its rows.
+  virtual std::pair<Index, Index> owned_nodes() const = 0;
+  /// Its own nodes and every node its cells touch (ghosts), sorted.
+  virtual const std::vector<Index>& touched_nodes() const = 0;
 };
 
 /// The body's capability C, or null.

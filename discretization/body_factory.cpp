@@ -30,6 +30,17 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
   return mesh_box(request);
 }
 
+/// Under MPI, a FEM body assembles only its rank's cells where every term of
+/// the run can add parts across ranks: not yet explicit runs (their step
+/// bound needs every cell), contact or cuts (issue 18: these still run whole
+/// on every rank, only the linear solve shared).
+RankShare fem_rank_share(const Scene& scene) {
+  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty() &&
+                            (scene.solve.analysis == Analysis::static_analysis ||
+                             scene.solve.integrator != Integrator::central_difference);
+  return parts_add_up ? process_ranks() : RankShare{};
+}
+
 int fem_order(const Scene& scene) { return element_kind(scene.discretization.fem.element).order; }
 
 std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
@@ -77,7 +88,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
-  return std::make_unique<FemBody>(scene, std::move(mesh));
+  return std::make_unique<FemBody>(scene, std::move(mesh), fem_rank_share(scene));
 }
 
 }  // namespace kerf

@@ -32,30 +32,32 @@ std::vector<std::pair<Index, Index>> split(Index begin, Index end, int parts) {
 
 }  // namespace
 
-CellSchedule schedule_cells(const Mesh& mesh, int threads) {
-  const Index count = mesh.cell_count();
+CellSchedule schedule_cells(const Mesh& mesh, int threads, Index begin, Index end) {
+  if (end < 0) end = mesh.cell_count();
   CellSchedule s;
+  s.cells.resize(end - begin);
+  std::iota(s.cells.begin(), s.cells.end(), begin);
   if (threads <= 1) {
-    s.cells.resize(count);
-    std::iota(s.cells.begin(), s.cells.end(), 0);
-    s.phases = {{{0, count}}};
+    s.phases = {{{0, end - begin}}};
     s.banded = true;
     return s;
   }
-  // Banded: chunk c of 2T holds cells [c n / 2T, (c + 1) n / 2T) in mesh order.
-  s.cells.resize(count);
-  std::iota(s.cells.begin(), s.cells.end(), 0);
-  auto chunks = split(0, count, 2 * threads);
+  // Banded: chunk c of 2T holds the range's cells [c n / 2T, (c + 1) n / 2T) in mesh order.
+  auto chunks = split(0, end - begin, 2 * threads);
   s.phases.assign(2, {});
   for (std::size_t c = 0; c < chunks.size(); ++c) s.phases[c % 2].push_back(chunks[c]);
   s.banded = true;
   if (conflict_free(mesh, s)) return s;
-  // Colours, each split among the threads.
+  // Colours (of the whole mesh, keeping the range's cells), each split among the threads.
   CellColoring coloring = color_cells(mesh);
-  s.cells = coloring.cells;
+  s.cells.clear();
   s.phases.clear();
-  for (int k = 0; k < coloring.color_count(); ++k)
-    s.phases.push_back(split(coloring.start[k], coloring.start[k + 1], threads));
+  for (int k = 0; k < coloring.color_count(); ++k) {
+    const Index first = static_cast<Index>(s.cells.size());
+    for (Index i = coloring.start[k]; i < coloring.start[k + 1]; ++i)
+      if (coloring.cells[i] >= begin && coloring.cells[i] < end) s.cells.push_back(coloring.cells[i]);
+    s.phases.push_back(split(first, static_cast<Index>(s.cells.size()), threads));
+  }
   s.banded = false;
   return s;
 }

@@ -13,11 +13,12 @@
 namespace kerf {
 
 struct CellSchedule {
-  std::vector<Index> cells;                                   // all cells, in schedule order
+  std::vector<Index> cells;                                   // the scheduled cells, in schedule order
   std::vector<std::vector<std::pair<Index, Index>>> phases;   // [begin, end) ranges into `cells`
   bool banded = false;                                        // chunks (true) or colours (false)
 };
 
-CellSchedule schedule_cells(const Mesh& mesh, int threads);
+/// The cells [begin, end) (all by default: end < 0) scheduled for `threads`.
+CellSchedule schedule_cells(const Mesh& mesh, int threads, Index begin = 0, Index end = -1);
 
 }  // namespace kerf

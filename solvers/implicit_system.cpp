@@ -1,5 +1,7 @@
 #include "solvers/implicit_system.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 
 namespace kerf {
@@ -24,6 +26,18 @@ std::vector<Vector> rigid_body_modes(const MechanicalSystem& mechanics, const Fr
   return modes;
 }
 
+/// The dofs' share in the numbering of the free dofs (ascending with the dofs).
+RowShare free_rows(const RowShare& dofs, const FreeDofs& free) {
+  RowShare rows;
+  rows.partial = dofs.partial;
+  const std::vector<Index>& all = free.free_dofs();
+  rows.owned_begin = static_cast<Index>(std::lower_bound(all.begin(), all.end(), dofs.owned_begin) - all.begin());
+  rows.owned_end = static_cast<Index>(std::lower_bound(all.begin(), all.end(), dofs.owned_end) - all.begin());
+  for (Index d : dofs.touched)
+    if (free.free_index(d) >= 0) rows.touched.push_back(free.free_index(d));
+  return rows;
+}
+
 }  // namespace
 
 ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass,
@@ -42,6 +56,8 @@ ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOpt
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
+  free_share_ = free_rows(mechanics_.dof_share(), free_);
+  solver_->set_row_share(free_share_);
   reuse_factorization_ = !mechanics_.is_linear() && solver_->exact_factor();
   if (needs_mass) {
     has_mass_ = true;
@@ -105,7 +121,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
       stiffness_assembled_ = true;
       stiffness_changed_ = true;
     }
-    f = stiffness_ * u;
+    f = times(stiffness_.valuePtr(), u);
     return;
   }
   if (!with_tangent) {
@@ -122,29 +138,29 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
 Vector ImplicitSystem::mass_times(const Vector& x) const {
   KERF_DCHECK(has_mass_);
   if (lumped_) return lumped_mass_.cwiseProduct(x);
-  Eigen::Map<const SparseMatrix> mass(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
-                                      stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), mass_values_.data());
-  return mass * x;
+  return times(mass_values_.data(), x);
 }
 
-Vector ImplicitSystem::stiffness_times(const Vector& x) const { return stiffness_ * x; }
+Vector ImplicitSystem::stiffness_times(const Vector& x) const { return times(stiffness_.valuePtr(), x); }
+
+Vector ImplicitSystem::times(const double* values, const Vector& x) const {
+  const RankSum* sum = mechanics_.rank_sum();
+  if (!sum) {
+    Eigen::Map<const SparseMatrix> A(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
+                                     stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), values);
+    return A * x;
+  }
+  Vector y = rows_times(stiffness_, values, mechanics_.dof_share().touched, x);
+  sum->sum(y);
+  return y;
+}
 
 void ImplicitSystem::update_matrix(double cm, double ck, const std::string& where) {
   if (!stiffness_changed_ && cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_) return;
   KERF_CHECK(stiffness_assembled_ || ck == 0.0, "internal: matrix update before the stiffness was assembled");
   {
     ScopedTimer timer(report_.phases, Phase::assembly);
-    const Index nnz = stiffness_.nonZeros();
-    const double* k = stiffness_.valuePtr();
-    double* a = system_.valuePtr();
-    for (Index p = 0; p < nnz; ++p) a[p] = ck * k[p];
-    if (cm != 0.0) {
-      if (lumped_)
-        for (Index r = 0; r < stiffness_.rows(); ++r) a[diagonal_[r]] += cm * lumped_mass_[r];
-      else
-        for (Index p = 0; p < nnz; ++p) a[p] += cm * mass_values_[p];
-    }
-    free_.restrict_values(system_);
+    combine(cm, ck);
   }
   const bool same_coefficients = cm == last_mass_coefficient_ && ck == last_stiffness_coefficient_;
   stiffness_changed_ = false;
@@ -155,6 +171,34 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
     return;
   }
   factorize_now(where);
+}
+
+void ImplicitSystem::combine(double cm, double ck) {
+  // A partial matrix holds values in this rank's touched rows alone: the others are left untouched (zero).
+  const RowShare& share = mechanics_.dof_share();
+  const Index* outer = stiffness_.outerIndexPtr();
+  const double* k = stiffness_.valuePtr();
+  double* a = system_.valuePtr();
+  const bool consistent = cm != 0.0 && !lumped_;
+  auto combine_row = [&](Index r) {
+    for (Index p = outer[r]; p < outer[r + 1]; ++p) {
+      a[p] = ck * k[p];
+      if (consistent) a[p] += cm * mass_values_[p];
+    }
+    // The lumped mass is whole: a partial matrix takes it on its own rows only.
+    if (cm != 0.0 && lumped_ && (!share.partial || (r >= share.owned_begin && r < share.owned_end)))
+      a[diagonal_[r]] += cm * lumped_mass_[r];
+  };
+  if (share.partial) {
+    const std::size_t count = share.touched.size();
+#pragma omp parallel for schedule(static)
+    for (std::size_t i = 0; i < count; ++i) combine_row(share.touched[i]);
+    free_.restrict_values(system_, free_share_.touched);
+  } else {
+#pragma omp parallel for schedule(static)
+    for (Index r = 0; r < stiffness_.rows(); ++r) combine_row(r);
+    free_.restrict_values(system_);
+  }
 }
 
 void ImplicitSystem::factorize_now(const std::string& where) {

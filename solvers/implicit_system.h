@@ -29,7 +29,7 @@ class ImplicitSystem {
   Vector mass_times(const Vector& x) const;
   Vector stiffness_times(const Vector& x) const;
   /// A x over all dofs, with A as last formed by update_matrix.
-  Vector system_times(const Vector& x) const { return system_ * x; }
+  Vector system_times(const Vector& x) const { return times(system_.valuePtr(), x); }
 
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).
@@ -43,6 +43,7 @@ class ImplicitSystem {
   const MechanicalSystem& mechanics_;
   RunReport& report_;
   FreeDofs free_;
+  RowShare free_share_;            // the ranks' share of the free rows
   SparseMatrix stiffness_;
   SparseMatrix system_;          // c_M M + c_K K, all dofs
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
@@ -61,6 +62,11 @@ class ImplicitSystem {
   Vector previous_solution_;          // warm start of the next preconditioned CG
   std::unique_ptr<LinearSolver> solver_;
 
+  /// A x for values of A in K's pattern, whole on every rank (a partial
+  /// matrix's product is taken over its touched rows and summed over the ranks).
+  Vector times(const double* values, const Vector& x) const;
+  /// A = c_M M + c_K K on the free dofs (this rank's rows of a partial matrix).
+  void combine(double cm, double ck);
   void read_mass();
   void factorize_now(const std::string& where);
   /// Conjugate gradients on A_ff preconditioned by the stale factor; false if

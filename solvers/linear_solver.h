@@ -6,6 +6,7 @@
 
 #include "core/run_report.h"
 #include "problem/scene.h"
+#include "solvers/row_share.h"
 #include "solvers/sparse_assembly.h"
 
 namespace kerf {
@@ -38,6 +39,9 @@ class LinearSolver {
   /// Vectors the operator nearly annihilates (rigid-body modes), for solvers
   /// that build coarse spaces from them (algebraic multigrid); before analyze().
   virtual void set_near_null_space(const std::vector<Vector>& modes) {}
+  /// How the MPI ranks share the rows (before analyze()): solvers that run on
+  /// one rank ignore it (the command line refuses them under several).
+  virtual void set_row_share(const RowShare& share) {}
 };
 
 struct LinearSolverOptions {

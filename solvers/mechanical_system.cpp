@@ -1,19 +1,43 @@
 #include "solvers/mechanical_system.h"
 
 #include "core/check.h"
+#include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
 
 namespace kerf {
 
 MechanicalSystem::MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report)
     : body_(body), body_dofs_(body.dof_count()) {
-  if (scene.contact.empty()) return;
-  ScopedTimer timer(report.phases, Phase::setup);
+  if (!scene.contact.empty()) {
+    ScopedTimer timer(report.phases, Phase::setup);
   const SurfaceSampling* surface = capability<SurfaceSampling>(body);
   KERF_CHECK(surface, scene.contact.front().where.describe(),
              ": this discretization has no surface samples, so nothing can touch it");
-  contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node());
-  report.add_stage("contact");
+    contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node());
+    report.add_stage("contact");
+  }
+  share_rows();
+}
+
+void MechanicalSystem::share_rows() {
+  const RankShare ranks = process_ranks();
+  const int dim = dofs_per_node();
+  const PartitionedAssembly* part = capability<PartitionedAssembly>(body_);
+  if (part && part->partitioned()) {
+    KERF_CHECK(!contact_, "internal: contact with a partitioned body");
+    share_.owned_begin = dim * part->owned_nodes().first;
+    share_.owned_end = dim * part->owned_nodes().second;
+    for (Index n : part->touched_nodes())
+      for (int i = 0; i < dim; ++i) share_.touched.push_back(dim * n + i);
+    share_.partial = true;
+    rank_sum_ = std::make_unique<RankSum>(dof_count(), share_.owned_begin, share_.owned_end, share_.touched);
+    return;
+  }
+  // Every rank holds the whole; rows split by nodes, the terms' dofs to the last rank.
+  auto [begin, end] = even_part(body_.node_count(), ranks.rank, ranks.count);
+  share_.owned_begin = dim * begin;
+  share_.owned_end = ranks.rank + 1 == ranks.count ? dof_count() : dim * end;
+  for (Index d = share_.owned_begin; d < share_.owned_end; ++d) share_.touched.push_back(d);
 }
 
 Vec3 MechanicalSystem::dof_position(Index dof) const {
@@ -34,10 +58,15 @@ const Vector& MechanicalSystem::body_part(const Vector& x, Vector& buffer) const
 
 double MechanicalSystem::strain_energy(const Vector& u) const {
   Vector buffer;
-  return body_.strain_energy(body_part(u, buffer));
+  const double energy = body_.strain_energy(body_part(u, buffer));
+  return rank_sum_ ? rank_sum_->sum(energy) : energy;
 }
 
 void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
+  if (rank_sum_) {
+    body_.internal_force(u, f);
+    return rank_sum_->sum(f);
+  }
   if (!contact_) return body_.internal_force(u, f);
   body_.internal_force(body_part(u, body_u_), body_f_);
   f.resize(dof_count());
@@ -47,6 +76,7 @@ void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
 }
 
 void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  KERF_CHECK(!rank_sum_, "internal: a partitioned body's tangent through a sink (its parts cannot be added)");
   tangent_with([&](const Vector& body_u, Vector* body_f) { body_.tangent(body_u, sink, body_f); }, u, sink, f);
 }
 
@@ -57,6 +87,7 @@ void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f)
   const CsrView view = csr_view(K);
   tangent_with([&](const Vector& body_u, Vector* body_f) { direct->add_tangent_into(body_u, view, body_f); }, u,
                sink, f);
+  if (rank_sum_ && f) rank_sum_->sum(*f);
 }
 
 void MechanicalSystem::tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink,
@@ -75,6 +106,11 @@ void MechanicalSystem::add_terms(const Vector& u, Vector& f, const BlockSink* si
 }
 
 Vector MechanicalSystem::lumped_mass() const {
+  if (rank_sum_) {
+    Vector m = body_.lumped_mass();
+    rank_sum_->sum(m);
+    return m;
+  }
   if (!contact_) return body_.lumped_mass();
   Vector m(dof_count());
   m.head(body_dofs_) = body_.lumped_mass();

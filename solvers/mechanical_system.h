@@ -9,6 +9,8 @@
 #include "core/run_report.h"
 #include "discretization/discrete_body.h"
 #include "solvers/contact_term.h"
+#include "solvers/rank_sum.h"
+#include "solvers/row_share.h"
 #include "solvers/sparse_assembly.h"
 
 namespace kerf {
@@ -32,12 +34,23 @@ class MechanicalSystem {
   /// itself without terms, else copied into `buffer` (no allocation once sized).
   const Vector& body_part(const Vector& x, Vector& buffer) const;
 
+  /// How the MPI ranks share the dofs: a body that assembles its rank's
+  /// cells only (PartitionedAssembly) writes partial matrices, which the
+  /// solver adds up; its forces, energy and lumped mass are summed here, so
+  /// every vector and number this class returns is whole on every rank.
+  const RowShare& dof_share() const { return share_; }
+  /// Adds the ranks' parts of a vector computed from partial matrices (as
+  /// K u); null unless the body is partitioned.
+  const RankSum* rank_sum() const { return rank_sum_.get(); }
+
   void visit_couplings(const CouplingVisitor& visit) const;
   /// f_int(u) of the body and the terms (N). Not reentrant (kept buffers).
   void internal_force(const Vector& u, Vector& f) const;
+  /// Not for a partitioned body (its blocks cannot be summed through a sink).
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const;
   /// The same added into K (whose pattern is build_pattern's), the body's part
-  /// straight into K's arrays when it can (MatrixAssembly).
+  /// straight into K's arrays when it can (MatrixAssembly); K holds this
+  /// rank's part when the body is partitioned, f is whole.
   void tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const;
   /// Linear in u: a linear body without contact.
   bool is_linear() const { return body_.is_linear() && !contact_; }
@@ -50,6 +63,7 @@ class MechanicalSystem {
   double strain_energy(const Vector& u) const;
 
   Vector lumped_mass() const;
+  /// This rank's part when the body is partitioned (a partial matrix).
   void consistent_mass(const BlockSink& sink) const;
   void external_force(double t, Vector& f) const;
   std::vector<DirichletDof> dirichlet(double t) const;
@@ -63,6 +77,9 @@ class MechanicalSystem {
   const DiscreteBody& body_;
   Index body_dofs_;
   std::unique_ptr<ContactTerm> contact_;
+  RowShare share_;
+  std::unique_ptr<RankSum> rank_sum_;
+  void share_rows();
   mutable Vector body_u_, body_f_;  // buffers of the calls made every step (internal and external force)
 };
 

@@ -35,7 +35,7 @@ void ensure_petsc_initialized() {
   std::atexit([] { PetscFinalize(); });
 }
 
-MpiRanks mpi_ranks() {
+RankShare mpi_ranks() {
   if (!launched_by_mpi()) return {};
   ensure_petsc_initialized();
   PetscMPIInt rank = 0, size = 1;

@@ -4,6 +4,8 @@
 // every rank knows how many there are before any work. kerf passes no message
 // of its own: PETSc is the only message passing.
 
+#include "core/rank_share.h"
+
 namespace kerf {
 
 /// Throws naming the PETSc (or MPI) call and PETSc's message when `code` is not 0.
@@ -13,14 +15,9 @@ void check_petsc(int code, const char* call);
 /// finalized at exit.
 void ensure_petsc_initialized();
 
-struct MpiRanks {
-  int rank = 0;
-  int count = 1;
-};
-
 /// This process's rank among those mpirun started (Open MPI or another PMIx
 /// launcher: PETSc is then started here); 0 of 1 without a launcher, and
 /// PETSc is left unstarted.
-MpiRanks mpi_ranks();
+RankShare mpi_ranks();
 
 }  // namespace kerf

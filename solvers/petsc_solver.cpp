@@ -3,6 +3,7 @@
 #include <petscksp.h>
 
 #include <cstdlib>
+#include <optional>
 #include <vector>
 
 #include "core/check.h"
@@ -26,10 +27,11 @@ class PetscSolver final : public LinearSolver {
   }
   std::string name() const override { return "petsc"; }
   void set_near_null_space(const std::vector<Vector>& modes) override { near_null_space_ = modes; }
+  void set_row_share(const RowShare& share) override { share_ = share; }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
     const PetscInt n = static_cast<PetscInt>(pattern.rows());
-    PetscInt local = PETSC_DECIDE, global = n;
+    PetscInt local = share_ ? share_->owned_end - share_->owned_begin : PETSC_DECIDE, global = n;
     check_petsc(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
     check_petsc(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check_petsc(MatSetSizes(matrix_, local, local, n, n), "MatSetSizes");
@@ -48,6 +50,8 @@ class PetscSolver final : public LinearSolver {
           "MatXAIJSetPreallocation");
     check_petsc(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check_petsc(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
+    // Partial matrices send the same ghost rows at every assembly: PETSc keeps the communication's pattern.
+    if (partial()) check_petsc(MatSetOption(matrix_, MAT_SUBSET_OFF_PROC_ENTRIES, PETSC_TRUE), "MatSetOption");
     first_ = first;
     end_ = end;
     check_petsc(MatCreateVecs(matrix_, &x_, &b_), "MatCreateVecs");
@@ -65,10 +69,17 @@ class PetscSolver final : public LinearSolver {
 
   LinearSolverStatus factorize(const SparseMatrix& A) override {
     std::vector<PetscInt> cols;  // PetscInt may be wider than kerf's Index
-    for (PetscInt r = first_; r < end_; ++r) {
+    auto set_row = [&](PetscInt r, InsertMode mode) {
       Index begin = A.outerIndexPtr()[r], count = A.outerIndexPtr()[r + 1] - begin;
       cols.assign(A.innerIndexPtr() + begin, A.innerIndexPtr() + begin + count);
-      check_petsc(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, INSERT_VALUES), "MatSetValues");
+      check_petsc(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, mode), "MatSetValues");
+    };
+    if (partial()) {
+      // This rank's part of every row its cells touch; PETSc adds the ranks' parts.
+      check_petsc(MatZeroEntries(matrix_), "MatZeroEntries");
+      for (Index r : share_->touched) set_row(r, ADD_VALUES);
+    } else {
+      for (PetscInt r = first_; r < end_; ++r) set_row(r, INSERT_VALUES);
     }
     check_petsc(MatAssemblyBegin(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check_petsc(MatAssemblyEnd(matrix_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
@@ -143,7 +154,10 @@ class PetscSolver final : public LinearSolver {
     for (Vec& v : vectors) check_petsc(VecDestroy(&v), "VecDestroy");
   }
 
+  bool partial() const { return share_ && share_->partial; }
+
   std::vector<Vector> near_null_space_;
+  std::optional<RowShare> share_;
   std::string options_;
   double tolerance_;
   Mat matrix_ = nullptr;

@@ -28,6 +28,10 @@ CsrView csr_view(SparseMatrix& matrix);
 std::vector<Index> diagonal_positions(const SparseMatrix& matrix);
 
 /// The split of dofs into free and constrained, and the restriction A -> A_ff.
+/// y = A x, A's values in `values` (A's pattern), over the listed rows only
+/// (zero elsewhere): a rank's partial matrix holds values in its touched rows alone.
+Vector rows_times(const SparseMatrix& pattern, const double* values, const std::vector<Index>& rows, const Vector& x);
+
 class FreeDofs {
  public:
   FreeDofs(Index dof_count, const std::vector<DirichletDof>& constrained);
@@ -43,6 +47,8 @@ class FreeDofs {
   void prepare_matrix(const SparseMatrix& full);
   const SparseMatrix& restricted() const { return restricted_; }
   void restrict_values(const SparseMatrix& full);
+  /// The same for the listed free rows only (a rank's partial matrix holds no others).
+  void restrict_values(const SparseMatrix& full, const std::vector<Index>& free_rows);
 
  private:
   std::vector<Index> free_of_full_;

@@ -49,15 +49,15 @@ Mesh ordered_for_locality(Mesh mesh) {
 }
 }  // namespace
 
-FemBody::FemBody(const Scene& scene, Mesh mesh)
+FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share)
     : mesh_(ordered_for_locality(std::move(mesh))),
       facets_(boundary_facets(mesh_)),
-      schedule_(schedule_cells(mesh_, omp_get_max_threads())),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
       locator_(mesh_),
       law_(scene.material, scene.solve.tangent == TangentKind::definite),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
+  share_cells(share);
   auto box = bounding_box(mesh_);
   domain_size_ = (box[1] - box[0]).norm();
   npc_ = mesh_.nodes_per_cell();
@@ -92,6 +92,21 @@ FemBody::FemBody(const Scene& scene, Mesh mesh)
   }
   build_loads(scene);
   build_constraints(scene);
+}
+
+void FemBody::share_cells(RankShare share) {
+  share_ = share;
+  std::tie(cell_begin_, cell_end_) = even_part(mesh_.cell_count(), share.rank, share.count);
+  owned_nodes_ = even_part(mesh_.node_count(), share.rank, share.count);
+  schedule_ = schedule_cells(mesh_, omp_get_max_threads(), cell_begin_, cell_end_);
+  // Its own nodes (their rows take the whole lumped mass) and its cells'.
+  std::vector<char> touched(mesh_.node_count(), 0);
+  std::fill(touched.begin() + owned_nodes_.first, touched.begin() + owned_nodes_.second, 1);
+  for (Index c = cell_begin_; c < cell_end_; ++c)
+    for (Index n : mesh_.cell(c)) touched[n] = 1;
+  touched_nodes_.clear();
+  for (Index n = 0; n < mesh_.node_count(); ++n)
+    if (touched[n]) touched_nodes_.push_back(n);
 }
 
 template <int Dim, int Npc>
@@ -276,7 +291,7 @@ Vector FemBody::lumped_mass() const {
   // for quadratic elements, where row sums give negative corner masses).
   const int dim = mesh_.dimension;
   Vector m = Vector::Zero(dof_count());
-  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+  for (Index c = cell_begin_; c < cell_end_; ++c) {
     Eigen::MatrixXd M = element_scalar_mass(c);
     double scale = M.sum() / M.diagonal().sum();
     auto nodes = mesh_.cell(c);
@@ -290,7 +305,7 @@ void FemBody::consistent_mass(const BlockSink& sink) const {
   const int dim = mesh_.dimension, n = npc_ * dim;
   std::vector<Index> dofs(n);
   std::vector<double> block(n * n);
-  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+  for (Index c = cell_begin_; c < cell_end_; ++c) {
     Eigen::MatrixXd M = element_scalar_mass(c);
     auto nodes = mesh_.cell(c);
     std::fill(block.begin(), block.end(), 0.0);
@@ -393,6 +408,8 @@ SurfaceSamples FemBody::surface_samples(const Box& region, int points_per_direct
 double FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.
+  // Every cell's bound is needed, and a partitioned body loops over its own.
+  KERF_CHECK(!partitioned(), "internal: the element step bound of a partitioned body");
   const int dim = mesh_.dimension, n = npc_ * dim;
   std::vector<double> omega2(mesh_.cell_count(), 0.0);
   ElementSink element_frequency = [&](Index c, std::span<const Index>, std::span<const double> values) {

@@ -4,6 +4,7 @@
 // Shape-function gradients and quadrature weights are computed once.
 #include <vector>
 
+#include "core/rank_share.h"
 #include "core/run_report.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/fem/simplex_quadrature.h"
@@ -19,10 +20,13 @@ class FemBody final : public DiscreteBody,
                       public SurfaceSampling,
                       public ElementStepBound,
                       public MeshedBody,
-                      public MatrixAssembly {
+                      public MatrixAssembly,
+                      public PartitionedAssembly {
  public:
-  /// Builds loads and constraints from the scene; throws on a selection that takes nothing.
-  FemBody(const Scene& scene, Mesh mesh);
+  /// Builds loads and constraints from the scene; throws on a selection that
+  /// takes nothing. With a distributed `share`, assembles only its rank's
+  /// cells (PartitionedAssembly): an even split of the locality-ordered cells.
+  FemBody(const Scene& scene, Mesh mesh, RankShare share = {});
 
   int dofs_per_node() const override { return mesh_.dimension; }
   Index node_count() const override { return mesh_.node_count(); }
@@ -52,6 +56,10 @@ class FemBody final : public DiscreteBody,
   const Mesh& mesh() const override { return mesh_; }
   void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
 
+  bool partitioned() const override { return share_.distributed(); }
+  std::pair<Index, Index> owned_nodes() const override { return owned_nodes_; }
+  const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
+
  private:
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
@@ -65,10 +73,16 @@ class FemBody final : public DiscreteBody,
   const std::vector<Index>& pair_offsets(const CsrView& matrix) const;
   void build_loads(const Scene& scene);
   void build_constraints(const Scene& scene);
+  /// This rank's cells, rows and touched nodes; the whole mesh on one rank.
+  void share_cells(RankShare share);
 
   Mesh mesh_;
   BoundaryFacets facets_;
-  CellSchedule schedule_;      // ranges of one phase share no node: parallel without conflicts
+  RankShare share_;
+  Index cell_begin_ = 0, cell_end_ = 0;       // this rank's cells (all on one rank)
+  std::pair<Index, Index> owned_nodes_;       // this rank's rows' nodes
+  std::vector<Index> touched_nodes_;          // nodes of this rank's cells, sorted
+  CellSchedule schedule_;      // this rank's cells; ranges of one phase share no node: parallel without conflicts
   std::vector<char> on_boundary_;
   CellLocator locator_;        // interpolation_at: probes, and a state carried to a new mesh
   MaterialLaw law_;

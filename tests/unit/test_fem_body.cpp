@@ -154,6 +154,55 @@ TEST_P(FemElementTest, DirectAssemblyWritesWhatTheSinkWrites) {
   EXPECT_EQ((Eigen::MatrixXd(wider) - Eigen::MatrixXd(through_sink)).norm(), 0.0);
 }
 
+// What three ranks' bodies compute from their own cells adds up to the whole
+// body's: forces, stiffness, energy and both masses; each rank's touched rows
+// hold its own and every row its part writes; the owned rows tile the dofs.
+TEST_P(FemElementTest, ThreeRanksPartsAddUpToTheWhole) {
+  const ElementCase& e = GetParam();
+  const Scene scene = plain_scene(e.dim, MaterialModel::corotational);
+  const Mesh mesh = testing::unit_box_mesh(e.dim, e.order, 0.4);
+  const FemBody whole(scene, mesh);
+  std::srand(7);
+  const Vector u = 0.05 * Vector::Random(whole.dof_count());
+  SparseMatrix K = build_pattern(whole), M = build_pattern(whole);
+  Vector f;
+  whole.add_tangent_into(u, csr_view(K), &f);
+  whole.consistent_mass(add_into(M));
+  EXPECT_FALSE(whole.partitioned());
+  SparseMatrix K_sum = build_pattern(whole), M_sum = build_pattern(whole);
+  Vector f_sum = Vector::Zero(f.size()), lumped_sum = Vector::Zero(f.size());
+  double energy_sum = 0.0;
+  Index next_owned = 0;
+  for (int rank = 0; rank < 3; ++rank) {
+    const FemBody part(scene, mesh, RankShare{rank, 3});
+    ASSERT_TRUE(part.partitioned());
+    EXPECT_EQ(part.owned_nodes().first, next_owned);
+    next_owned = part.owned_nodes().second;
+    SparseMatrix K_part = build_pattern(part);
+    Vector f_part;
+    part.add_tangent_into(u, csr_view(K_part), &f_part);
+    std::vector<char> touched(part.node_count(), 0);
+    for (Index n : part.touched_nodes()) touched[n] = 1;
+    for (Index n = part.owned_nodes().first; n < part.owned_nodes().second; ++n) EXPECT_TRUE(touched[n]);
+    for (Index d = 0; d < f_part.size(); ++d)
+      if (!touched[d / e.dim]) {
+        ASSERT_EQ(f_part[d], 0.0) << "rank " << rank << " writes force to untouched dof " << d;
+        ASSERT_EQ(K_part.row(d).norm(), 0.0) << "rank " << rank << " writes untouched row " << d;
+      }
+    K_sum += K_part;
+    f_sum += f_part;
+    part.consistent_mass(add_into(M_sum));
+    lumped_sum += part.lumped_mass();
+    energy_sum += part.strain_energy(u);
+  }
+  EXPECT_EQ(next_owned, whole.node_count());
+  EXPECT_LT((K_sum - K).norm(), 1e-12 * K.norm());
+  EXPECT_LT((f_sum - f).norm(), 1e-12 * f.norm());
+  EXPECT_LT((M_sum - M).norm(), 1e-12 * M.norm());
+  EXPECT_LT((lumped_sum - whole.lumped_mass()).norm(), 1e-12 * lumped_sum.norm());
+  EXPECT_NEAR(energy_sum, whole.strain_energy(u), 1e-12 * std::abs(energy_sum));
+}
+
 TEST_P(FemElementTest, MassesAddUpToTheBodyMass) {
   FemBody body = make_body();
   const int dim = GetParam().dim;

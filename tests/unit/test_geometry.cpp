@@ -79,7 +79,9 @@ TEST(Geometry, CellsOfOneColourShareNoNode) {
   }
 }
 
-void expect_conflict_free_cover(const Mesh& mesh, const CellSchedule& s) {
+/// Every cell of [begin, end) (all by default) once, none outside; the ranges of a phase share no node.
+void expect_conflict_free_cover(const Mesh& mesh, const CellSchedule& s, Index begin = 0, Index end = -1) {
+  if (end < 0) end = mesh.cell_count();
   std::vector<int> seen(mesh.cell_count(), 0);
   for (const auto& phase : s.phases) {
     std::vector<int> owner(mesh.nodes.size(), -1);
@@ -92,7 +94,7 @@ void expect_conflict_free_cover(const Mesh& mesh, const CellSchedule& s) {
         }
       }
   }
-  for (Index c = 0; c < mesh.cell_count(); ++c) ASSERT_EQ(seen[c], 1) << "cell " << c;
+  for (Index c = 0; c < mesh.cell_count(); ++c) ASSERT_EQ(seen[c], c >= begin && c < end ? 1 : 0) << "cell " << c;
 }
 
 TEST(Geometry, CellScheduleIsBandedOnOrderedMeshesAndColouredOtherwise) {
@@ -108,6 +110,19 @@ TEST(Geometry, CellScheduleIsBandedOnOrderedMeshesAndColouredOtherwise) {
   CellSchedule many = schedule_cells(mesh, 64);
   EXPECT_FALSE(many.banded);
   expect_conflict_free_cover(mesh, many);
+}
+
+// A rank's share of the cells (a range of the ordered mesh) is scheduled
+// alone, banded or by colours.
+TEST(Geometry, CellScheduleOfARangeCoversThatRangeOnly) {
+  Mesh mesh = testing::unit_box_mesh(3, 1, 0.08);
+  order_for_locality(mesh);
+  const Index begin = mesh.cell_count() / 3, end = 2 * mesh.cell_count() / 3;
+  expect_conflict_free_cover(mesh, schedule_cells(mesh, 2, begin, end), begin, end);
+  CellSchedule many = schedule_cells(mesh, 64, begin, end);
+  EXPECT_FALSE(many.banded);
+  expect_conflict_free_cover(mesh, many, begin, end);
+  expect_conflict_free_cover(mesh, schedule_cells(mesh, 1, begin, end), begin, end);
 }
 
 TEST(Geometry, LocalityOrderingKeepsTheMeshAndNarrowsTheBandwidth) {

@@ -1,0 +1,34 @@
+#pragma once
+// Which of the MPI ranks this process is, for the code that splits work
+// between them without knowing PETSc (the bodies). Set once by the command
+// line (solvers/petsc_session.h finds it); 0 of 1 otherwise.
+#include <algorithm>
+#include <utility>
+
+#include "core/types.h"
+
+namespace kerf {
+
+struct RankShare {
+  int rank = 0;
+  int count = 1;
+  bool distributed() const { return count > 1; }
+};
+
+/// This process's share, as the command line recorded it.
+inline RankShare& process_ranks_storage() {
+  static RankShare share;
+  return share;
+}
+inline const RankShare& process_ranks() { return process_ranks_storage(); }
+inline void set_process_ranks(RankShare share) { process_ranks_storage() = share; }
+
+/// [begin, end) of `rank`'s part of n items split as PETSc splits ownership
+/// (PetscSplitOwnership): n / count each, one more for the first n % count.
+inline std::pair<Index, Index> even_part(Index n, int rank, int count) {
+  const Index base = n / count, extra = n % count;
+  const Index begin = rank * base + std::min<Index>(rank, extra);
+  return {begin, begin + base + (rank < extra ? 1 : 0)};
+}
+
+}  // namespace kerf

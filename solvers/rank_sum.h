@@ -1,0 +1,34 @@
+#pragma once
+// Adds up, across the MPI ranks, what each rank computed from its own cells:
+// a vector over all dofs of which a rank touches only some entries (its rows
+// and its ghosts'), and a number. Every rank gets the whole sum. Through
+// PETSc (a parallel vector assembled with ADD_VALUES, then gathered to all):
+// kerf passes no message of its own.
+#include <memory>
+#include <vector>
+
+#include "core/types.h"
+
+namespace kerf {
+
+class RankSum {
+ public:
+  /// `size` entries, of which this rank owns [owned_begin, owned_end) (the
+  /// ranks' ranges follow each other in rank order) and adds `touched`.
+  RankSum(Index size, Index owned_begin, Index owned_end, std::vector<Index> touched);
+  ~RankSum();
+  RankSum(const RankSum&) = delete;
+  RankSum& operator=(const RankSum&) = delete;
+
+  /// v holds this rank's part (zero outside `touched`); on return, the sum of every rank's.
+  void sum(Vector& v) const;
+  double sum(double x) const;
+
+ private:
+  struct Petsc;
+  std::unique_ptr<Petsc> petsc_;
+  std::vector<Index> touched_;
+  mutable std::vector<double> values_;
+};
+
+}  // namespace kerf

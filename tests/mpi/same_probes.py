@@ -1,0 +1,45 @@
+#!/usr/bin/env python3
+"""Whether two runs' summary.json give the same probes: every value of a
+probe within `tolerance` relative to the largest magnitude of that probe's
+values in the reference run. usage: same_probes.py REFERENCE OTHER TOLERANCE"""
+import json
+import sys
+
+
+def leaves(value):
+    if isinstance(value, dict):
+        for v in value.values():
+            yield from leaves(v)
+    elif isinstance(value, list):
+        for v in value:
+            yield from leaves(v)
+    elif isinstance(value, (int, float)) and not isinstance(value, bool):
+        yield float(value)
+
+
+def main():
+    reference_path, other_path, tolerance = sys.argv[1], sys.argv[2], float(sys.argv[3])
+    reference = json.load(open(reference_path))
+    other = json.load(open(other_path))
+    for run, path in ((reference, reference_path), (other, other_path)):
+        if run.get("status") != "ok":
+            sys.exit(f"{path}: status {run.get('status')}: {run.get('error', '')}")
+    if reference["counts"] != other["counts"]:
+        sys.exit(f"counts differ: {reference['counts']} against {other['counts']}")
+    worst = 0.0
+    for name, probe in reference["probes"].items():
+        if name not in other["probes"]:
+            sys.exit(f"{other_path}: probe '{name}' missing")
+        a, b = list(leaves(probe)), list(leaves(other["probes"][name]))
+        if len(a) != len(b):
+            sys.exit(f"probe '{name}': {len(a)} values against {len(b)}")
+        scale = max(abs(x) for x in a) or 1.0
+        difference = max(abs(x - y) for x, y in zip(a, b)) / scale
+        print(f"{name}: relative difference {difference:.3g}")
+        worst = max(worst, difference)
+    if not worst <= tolerance:
+        sys.exit(f"FAILED: relative difference {worst:.3g} above {tolerance:g}")
+    print(f"ok: largest relative difference {worst:.3g} <= {tolerance:g}")
+
+
+main()
