@@ -33,5 +33,6 @@ void stability_study(const StudyOptions& options);
 void pareto_study(const StudyOptions& options);
 void cut_study(const StudyOptions& options);
 void solvers_study(const StudyOptions& options);
+void scaling_study(const StudyOptions& options);
 
 }  // namespace kerf

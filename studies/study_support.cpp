@@ -1,11 +1,14 @@
 #include "studies/study_support.h"
 
+#include <unistd.h>
+
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
+#include <thread>
 
 #include "app/run_scene.h"
 #include "core/check.h"
@@ -43,13 +46,47 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
   } catch (const std::exception& e) {
     summary = {{"status", "error"}, {"error", e.what()}};
   }
+  report_point(label, summary, start);
+  return summary;
+}
+
+Json StudyRunner::run_on_ranks(const std::string& label, const std::string& yaml, int ranks, int threads) {
+  const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
+  const std::string run_dir = out_ + "/runs/" + label;
+  write_file_atomically(scene_file, yaml);
+  std::filesystem::remove_all(run_dir);
+  ++done_;
+  // mpirun refuses root without --allow-run-as-root, and more ranks than cores without --oversubscribe.
+  std::string command = "OMP_NUM_THREADS=" + std::to_string(threads) + " ";
+  if (ranks > 1) {
+    command += "mpirun -np " + std::to_string(ranks) + (geteuid() == 0 ? " --allow-run-as-root" : "");
+    if (ranks > static_cast<int>(std::thread::hardware_concurrency())) command += " --oversubscribe";
+    command += " ";
+  }
+  const std::string kerf = std::filesystem::read_symlink("/proc/self/exe").string();  // this very binary
+  command += "'" + kerf + "' run '" + scene_file + "' --out '" + run_dir + "' --quiet 2>'" + run_dir + ".log'";
+  const double start = now_seconds();
+  const int status = std::system(command.c_str());
+  const double wall = now_seconds() - start;
+  Json summary;
+  std::ifstream in(run_dir + "/summary.json");
+  if (in)
+    summary = Json::parse(in, nullptr, false);
+  if (!in || summary.is_discarded() || status != 0)
+    summary = {{"status", "error"},
+               {"error", command + " exited with " + std::to_string(status) + "; see " + run_dir + ".log"}};
+  summary["wall_s"] = wall;
+  report_point(label, summary, start);
+  return summary;
+}
+
+void StudyRunner::report_point(const std::string& label, const Json& summary, double start) {
   std::ostringstream line;
   line << "[" << done_ << "/" << planned_ << "] " << label << ": " << summary.value("status", "?") << " in "
        << std::fixed << std::setprecision(1) << now_seconds() - start << " s (study " << now_seconds() - start_
        << " s)";
   if (summary.value("status", "") == "error") line << "\n    " << summary.value("error", "");
   say(line.str());
-  return summary;
 }
 
 double phase_ms_per_step(const Json& summary, const std::string& phase, int steps) {

@@ -21,8 +21,14 @@ class StudyRunner {
   /// and returns its summary.json (status "error" and the message when it failed:
   /// a study records a failed point and goes on).
   Json run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides = {});
+  /// The same as a separate `kerf run` on `ranks` MPI ranks (mpirun; 1: no
+  /// mpirun) of `threads` OpenMP threads each; the summary gains `wall_s`,
+  /// the launch's wall time.
+  Json run_on_ranks(const std::string& label, const std::string& yaml, int ranks, int threads);
   /// A progress line (unless quiet).
   void say(const std::string& text) const;
+  /// The progress line of a finished point.
+  void report_point(const std::string& label, const Json& summary, double start);
   const std::string& out_dir() const { return out_; }
 
  private:

@@ -1,0 +1,197 @@
+// Scaling study: the same scene on 1, 2 and 3 MPI ranks, phase by phase.
+//
+//   kerf study scaling [--quick] [--out DIR]
+//
+// Each point is a separate `kerf run` under mpirun (1 rank: no mpirun), one
+// OpenMP thread a rank, so that ranks, not threads, share the cores; the
+// 1-rank run with as many threads as cores is measured beside them (what one
+// process does on the whole machine). Three problems:
+//   static_tet10   strong scaling: the cantilever (10 x 2 x 2 cm, linear,
+//                  under its weight) in tet10, about 500 000 dofs (quick: 6 000);
+//   implicit_tet4  strong scaling: the solvers study's corotational cube,
+//                  implicit Euler, one linearised solve a step, about 300 000
+//                  dofs (quick: 3 000), 3 steps;
+//   weak_tet10     weak scaling: the cantilever with about 200 000 dofs a
+//                  rank (skipped in quick mode).
+// Every linear solve is PETSc CG + GAMG with the rigid-body near-null space,
+// to a relative residual of 1e-8. Read from each run: the phases (setup,
+// assembly, factorize = the preconditioner's set-up, solve, output), the
+// launch's wall time and rank 0's peak memory. Speed is measured here, never
+// asserted; the claims checked are that every point ran and that the ranks
+// give the 1-rank answer to the solver's tolerance.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <thread>
+
+#include "studies/study_support.h"
+
+namespace kerf {
+namespace {
+
+struct Problem {
+  std::string label;
+  bool weak = false;
+  int steps = 1;
+  std::string (*scene)(double size);
+  double size;  // mesh size at one rank (m); weak scaling shrinks it with the ranks
+};
+
+std::string cantilever(double size) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "name: scaling\n"
+    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.02, 0.02]}}\n"
+    << "material: {model: linear, young: 1.0e6, poisson: 0.3, density: 1000.0}\n"
+    << "discretization: {method: fem, fem: {element: tet10, size: " << size << "}}\n"
+    << "boundary:\n"
+    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
+    << "body_force: {gravity: [0, 0, -9.81]}\n"
+    << "solve: {analysis: static, linear_solver: petsc, linear_tolerance: 1.0e-8}\n"
+    << "output:\n"
+    << "  vtk: false\n"
+    << "  probes:\n"
+    << "    - {name: probe, point: [0.1, 0.01, 0.01], field: displacement}\n";
+  return s.str();
+}
+
+std::string corotational_cube(double size) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "name: scaling\n"
+    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
+    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
+    << "discretization: {method: fem, fem: {element: tet4, size: " << size << "}}\n"
+    << "boundary:\n"
+    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
+    << "body_force: {gravity: [0, 0, -9.81]}\n"
+    << "solve:\n"
+    << "  analysis: dynamic\n"
+    << "  integrator: implicit-euler\n"
+    << "  dt: 0.01\n"
+    << "  duration: 0.03\n"
+    << "  newton: {max_iterations: 1}\n"
+    << "  linear_solver: petsc\n"
+    << "  linear_tolerance: 1.0e-8\n"
+    << "output:\n"
+    << "  vtk: false\n"
+    << "  probes:\n"
+    << "    - {name: probe, point: [0.05, 0.05, 0.1], field: displacement}\n";
+  return s.str();
+}
+
+const char* const phases[] = {"setup", "assembly", "factorize", "solve", "output"};
+
+/// One point's row: its figures from the run's summary.
+Json point_of(const Problem& problem, int ranks, int threads, const Json& summary) {
+  Json point = {{"problem", problem.label}, {"ranks", ranks}, {"threads", threads}};
+  if (summary.value("status", "") != "ok") {
+    point["status"] = summary.value("error", std::string("failed"));
+    return point;
+  }
+  const Json& p = summary["timing"]["phases"];
+  for (const char* phase : phases) point[std::string(phase) + "_s"] = p[std::string(phase) + "_s"];
+  point.update({{"status", "ok"},
+                {"dofs", summary["counts"]["dofs"]},
+                {"wall_s", summary["wall_s"]},
+                {"partitioned", summary["parallel"]["partitioned"]},
+                {"rank0_touched_rows", summary["parallel"]["rank0_touched_rows"]},
+                {"rank0_peak_memory_mb", summary["parallel"]["rank0_peak_memory_mb"]},
+                {"linear_iterations", summary["solver"]["linear_iterations"]},
+                {"probe_z_m", summary["probes"]["probe"]["displacement"][2]}});
+  return point;
+}
+
+}  // namespace
+
+void scaling_study(const StudyOptions& options) {
+  // 1. The problems and the launches: 1, 2, 3 ranks of one thread, and one rank of every core.
+  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::vector<Problem> problems;
+  if (options.quick)
+    problems = {{"static_tet10", false, 1, cantilever, 0.005}, {"implicit_tet4", false, 3, corotational_cube, 0.011}};
+  else
+    problems = {{"static_tet10", false, 1, cantilever, 0.00118},
+                {"implicit_tet4", false, 3, corotational_cube, 0.002},
+                {"weak_tet10", true, 1, cantilever, 0.0016}};
+  struct Launch {
+    int ranks, threads;
+  };
+  std::vector<Launch> launches{{1, 1}, {2, 1}, {3, 1}};
+  if (cores > 1) launches.push_back({1, cores});
+  StudyRunner runner("scaling", options, static_cast<int>(problems.size() * launches.size()));
+
+  // 2. Run each.
+  std::vector<std::string> columns{"problem", "ranks", "threads", "dofs", "wall_s"};
+  for (const char* phase : phases) columns.push_back(std::string(phase) + "_s");
+  for (const char* c : {"rank0_peak_memory_mb", "linear_iterations", "probe_z_m", "status"}) columns.push_back(c);
+  CsvTable table(runner.out_dir() + "/scaling.csv", columns);
+  Json points = Json::array();
+  for (const Problem& problem : problems)
+    for (const Launch& launch : launches) {
+      if (problem.weak && launch.threads > 1) continue;
+      const double size = problem.weak ? problem.size / std::cbrt(static_cast<double>(launch.ranks)) : problem.size;
+      const std::string label =
+          problem.label + "_" + std::to_string(launch.ranks) + "x" + std::to_string(launch.threads);
+      const Json point = point_of(problem, launch.ranks, launch.threads,
+                                  runner.run_on_ranks(label, problem.scene(size), launch.ranks, launch.threads));
+      std::vector<Json> row{problem.label, launch.ranks, launch.threads, point.value("dofs", Json()),
+                            point.value("wall_s", Json())};
+      for (const char* phase : phases) row.push_back(point.value(std::string(phase) + "_s", Json()));
+      for (const char* c : {"rank0_peak_memory_mb", "linear_iterations", "probe_z_m"}) row.push_back(point.value(c, Json()));
+      row.push_back(point["status"] == "ok" ? "ok" : "error");
+      table.row(row);
+      points.push_back(point);
+    }
+
+  // 3. Speed-ups against one rank of one thread, phase by phase (strong scaling).
+  Json speedups = Json::array();
+  for (const Problem& problem : problems) {
+    if (problem.weak) continue;
+    const Json* one = nullptr;
+    for (const Json& p : points)
+      if (p["problem"] == problem.label && p["ranks"] == 1 && p["threads"] == 1 && p["status"] == "ok") one = &p;
+    if (!one) continue;
+    for (const Json& p : points) {
+      if (p["problem"] != problem.label || p["status"] != "ok" || &p == one) continue;
+      Json s = {{"problem", problem.label}, {"ranks", p["ranks"]}, {"threads", p["threads"]}};
+      for (const char* phase : phases) {
+        const std::string key = std::string(phase) + "_s";
+        s[phase] = p[key].get<double>() > 0.0 ? (*one)[key].get<double>() / p[key].get<double>() : 0.0;
+      }
+      const double solve_one = (*one)["assembly_s"].get<double>() + (*one)["factorize_s"].get<double>() +
+                               (*one)["solve_s"].get<double>();
+      const double solve_p = p["assembly_s"].get<double>() + p["factorize_s"].get<double>() + p["solve_s"].get<double>();
+      s["assembly_factorize_solve"] = solve_one / solve_p;
+      s["wall"] = (*one)["wall_s"].get<double>() / p["wall_s"].get<double>();
+      speedups.push_back(s);
+    }
+  }
+  write_json(runner.out_dir() + "/scaling.json", {{"study", "scaling"},
+                                                   {"quick", options.quick},
+                                                   {"cores", cores},
+                                                   {"speedups", speedups},
+                                                   {"plots", {"scaling.png"}},
+                                                   {"points", points}});
+  plot("scaling", runner.out_dir());
+
+  // 4. The claims: every point ran, and every launch gives the 1-rank answer to the solver's tolerance.
+  for (const Json& p : points)
+    check_claim(p["status"] == "ok", p["problem"].get<std::string>() + " on " + p["ranks"].dump() + " ranks of " +
+                                         p["threads"].dump() + " threads ran (" + p["status"].dump() + ")");
+  for (const Problem& problem : problems) {
+    if (problem.weak) continue;  // each launch has its own mesh
+    const Json* one = nullptr;
+    for (const Json& p : points)
+      if (p["problem"] == problem.label && p["ranks"] == 1 && p["threads"] == 1) one = &p;
+    for (const Json& p : points) {
+      if (p["problem"] != problem.label) continue;
+      const double a = (*one)["probe_z_m"].get<double>(), b = p["probe_z_m"].get<double>();
+      check_claim(std::abs(a - b) <= 1e-6 * std::abs(a),
+                  problem.label + " on " + p["ranks"].dump() + " ranks: probe " + std::to_string(b) +
+                      " m against 1 rank's " + std::to_string(a) + " m (to 1e-6 relative)");
+    }
+  }
+}
+
+}  // namespace kerf
