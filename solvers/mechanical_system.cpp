@@ -10,9 +10,9 @@ MechanicalSystem::MechanicalSystem(const DiscreteBody& body, const Scene& scene,
     : body_(body), body_dofs_(body.dof_count()) {
   if (!scene.contact.empty()) {
     ScopedTimer timer(report.phases, Phase::setup);
-  const SurfaceSampling* surface = capability<SurfaceSampling>(body);
-  KERF_CHECK(surface, scene.contact.front().where.describe(),
-             ": this discretization has no surface samples, so nothing can touch it");
+    const SurfaceSampling* surface = capability<SurfaceSampling>(body);
+    KERF_CHECK(surface, scene.contact.front().where.describe(),
+               ": this discretization has no surface samples, so nothing can touch it");
     contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node());
     report.add_stage("contact");
   }

@@ -119,7 +119,10 @@ void scaling_study(const StudyOptions& options) {
   };
   std::vector<Launch> launches{{1, 1}, {2, 1}, {3, 1}};
   if (cores > 1) launches.push_back({1, cores});
-  StudyRunner runner("scaling", options, static_cast<int>(problems.size() * launches.size()));
+  int planned = 0;
+  for (const Problem& problem : problems)
+    for (const Launch& launch : launches) planned += problem.weak && launch.threads > 1 ? 0 : 1;
+  StudyRunner runner("scaling", options, planned);
 
   // 2. Run each.
   std::vector<std::string> columns{"problem", "ranks", "threads", "dofs", "wall_s"};
