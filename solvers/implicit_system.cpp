@@ -26,10 +26,20 @@ std::vector<Vector> rigid_body_modes(const MechanicalSystem& mechanics, const Fr
   return modes;
 }
 
+/// Whether every node (and every term's block) has all its dofs free or none.
+bool free_in_whole_nodes(const FreeDofs& free, Index dof_count, int dim) {
+  if (dof_count % dim != 0) return false;
+  for (Index first = 0; first < dof_count; first += dim)
+    for (int i = 1; i < dim; ++i)
+      if ((free.free_index(first + i) >= 0) != (free.free_index(first) >= 0)) return false;
+  return true;
+}
+
 /// The dofs' share in the numbering of the free dofs (ascending with the dofs).
-RowShare free_rows(const RowShare& dofs, const FreeDofs& free) {
+RowShare free_rows(const RowShare& dofs, const FreeDofs& free, Index dof_count, int dim) {
   RowShare rows;
   rows.partial = dofs.partial;
+  rows.block_size = free_in_whole_nodes(free, dof_count, dim) ? dim : 1;
   const std::vector<Index>& all = free.free_dofs();
   rows.owned_begin = static_cast<Index>(std::lower_bound(all.begin(), all.end(), dofs.owned_begin) - all.begin());
   rows.owned_end = static_cast<Index>(std::lower_bound(all.begin(), all.end(), dofs.owned_end) - all.begin());
@@ -56,7 +66,7 @@ ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOpt
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
-  free_share_ = free_rows(mechanics_.dof_share(), free_);
+  free_share_ = free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node());
   solver_->set_row_share(free_share_);
   reuse_factorization_ = !mechanics_.is_linear() && solver_->exact_factor();
   if (needs_mass) {

@@ -36,6 +36,8 @@ class PetscSolver final : public LinearSolver {
     check_petsc(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
     check_petsc(MatSetSizes(matrix_, local, local, n, n), "MatSetSizes");
     check_petsc(MatSetType(matrix_, MATAIJ), "MatSetType");
+    // Whole nodes: GAMG aggregates nodes (the block size elasticity wants).
+    if (share_ && share_->block_size > 1) check_petsc(MatSetBlockSize(matrix_, share_->block_size), "MatSetBlockSize");
     PetscInt first = 0, end = 0;
     check_petsc(MatSetUp(matrix_), "MatSetUp");
     check_petsc(MatGetOwnershipRange(matrix_, &first, &end), "MatGetOwnershipRange");
@@ -46,8 +48,14 @@ class PetscSolver final : public LinearSolver {
         PetscInt c = pattern.innerIndexPtr()[p];
         (c >= first && c < end ? d_nnz : o_nnz)[r - first]++;
       }
-    check_petsc(MatXAIJSetPreallocation(matrix_, 1, d_nnz.data(), o_nnz.data(), nullptr, nullptr),
-          "MatXAIJSetPreallocation");
+    // Counted in blocks of whole nodes, whose rows share one pattern.
+    const PetscInt bs = share_ ? share_->block_size : 1;
+    for (PetscInt b = 0; b < (end - first) / bs; ++b) {
+      d_nnz[b] = d_nnz[b * bs] / bs;
+      o_nnz[b] = o_nnz[b * bs] / bs;
+    }
+    check_petsc(MatXAIJSetPreallocation(matrix_, bs, d_nnz.data(), o_nnz.data(), nullptr, nullptr),
+                "MatXAIJSetPreallocation");
     check_petsc(MatSetOption(matrix_, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
     check_petsc(MatSetOption(matrix_, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE), "MatSetOption");
     // Partial matrices send the same ghost rows at every assembly: PETSc keeps the communication's pattern.

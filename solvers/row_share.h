@@ -12,6 +12,9 @@ struct RowShare {
   /// Each rank computed its part of the values from its own cells: the ranks'
   /// parts add up to the matrix (false: every rank holds the whole).
   bool partial = false;
+  /// Rows come in whole nodes of this many (dofs per node), or 1: PETSc's
+  /// algebraic multigrid then aggregates nodes, not single dofs.
+  int block_size = 1;
 };
 
 }  // namespace kerf

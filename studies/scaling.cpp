@@ -55,30 +55,7 @@ std::string cantilever(double size) {
   return s.str();
 }
 
-std::string corotational_cube(double size) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: scaling\n"
-    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
-    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
-    << "discretization: {method: fem, fem: {element: tet4, size: " << size << "}}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n"
-    << "solve:\n"
-    << "  analysis: dynamic\n"
-    << "  integrator: implicit-euler\n"
-    << "  dt: 0.01\n"
-    << "  duration: 0.03\n"
-    << "  newton: {max_iterations: 1}\n"
-    << "  linear_solver: petsc\n"
-    << "  linear_tolerance: 1.0e-8\n"
-    << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: probe, point: [0.05, 0.05, 0.1], field: displacement}\n";
-  return s.str();
-}
+std::string corotational_cube(double size) { return implicit_cube_scene("scaling", size, 3, "petsc", "", "probe"); }
 
 const char* const phases[] = {"setup", "assembly", "factorize", "solve", "output"};
 

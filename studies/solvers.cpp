@@ -37,29 +37,7 @@ struct Solver {
 };
 
 std::string scene_text(const Size& size, const Solver& solver) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: solvers\n"
-    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
-    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
-    << "discretization: {method: fem, fem: {element: tet4, size: " << size.spacing << "}}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n"
-    << "solve:\n"
-    << "  analysis: dynamic\n"
-    << "  integrator: implicit-euler\n"
-    << "  dt: 0.01\n"
-    << "  duration: " << 0.01 * size.steps << "\n"
-    << "  newton: {max_iterations: 1}\n"
-    << "  linear_solver: " << solver.linear_solver << "\n"
-    << "  linear_tolerance: 1.0e-8\n";
-  if (!solver.petsc.empty()) s << "  petsc: '" << solver.petsc << "'\n";
-  s << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: top, point: [0.05, 0.05, 0.1], field: displacement}\n";
-  return s.str();
+  return implicit_cube_scene("solvers", size.spacing, size.steps, solver.linear_solver, solver.petsc, "top");
 }
 
 }  // namespace

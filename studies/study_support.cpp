@@ -89,6 +89,33 @@ void StudyRunner::report_point(const std::string& label, const Json& summary, do
   say(line.str());
 }
 
+std::string implicit_cube_scene(const std::string& name, double size, int steps, const std::string& linear_solver,
+                                const std::string& petsc, const std::string& probe) {
+  std::ostringstream s;
+  s.precision(12);
+  s << "name: " << name << "\n"
+    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
+    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
+    << "discretization: {method: fem, fem: {element: tet4, size: " << size << "}}\n"
+    << "boundary:\n"
+    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
+    << "body_force: {gravity: [0, 0, -9.81]}\n"
+    << "solve:\n"
+    << "  analysis: dynamic\n"
+    << "  integrator: implicit-euler\n"
+    << "  dt: 0.01\n"
+    << "  duration: " << 0.01 * steps << "\n"
+    << "  newton: {max_iterations: 1}\n"
+    << "  linear_solver: " << linear_solver << "\n"
+    << "  linear_tolerance: 1.0e-8\n";
+  if (!petsc.empty()) s << "  petsc: '" << petsc << "'\n";
+  s << "output:\n"
+    << "  vtk: false\n"
+    << "  probes:\n"
+    << "    - {name: " << probe << ", point: [0.05, 0.05, 0.1], field: displacement}\n";
+  return s.str();
+}
+
 double phase_ms_per_step(const Json& summary, const std::string& phase, int steps) {
   const Json& phases = summary["timing"]["phases"];
   return phases.contains(phase + "_s") ? 1e3 * phases[phase + "_s"].get<double>() / steps : 0.0;

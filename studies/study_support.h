@@ -55,6 +55,15 @@ class CsvTable {
 using ProbeHistory = std::map<std::string, std::vector<double>>;
 ProbeHistory read_probe_history(const std::string& run_dir);
 
+/// The solvers and scaling studies' cube: 10 cm of corotational soft tissue
+/// (E = 3 kPa, nu = 0.3) clamped at the bottom, sagging under gravity,
+/// implicit Euler at 10 ms with one linearised solve a step (as SOFA does),
+/// tet4 of `size` (m), `steps` steps, solved by `linear_solver` (with PETSc
+/// options `petsc` when not empty) to 1e-8; a displacement probe named
+/// `probe` at the top's centre.
+std::string implicit_cube_scene(const std::string& name, double size, int steps, const std::string& linear_solver,
+                                const std::string& petsc, const std::string& probe);
+
 /// A phase's mean milliseconds a step, from a run's summary (0 when absent).
 double phase_ms_per_step(const Json& summary, const std::string& phase, int steps);
 
