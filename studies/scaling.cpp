@@ -21,6 +21,7 @@
 // give the 1-rank answer to the solver's tolerance.
 #include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <sstream>
 #include <thread>
 
@@ -79,6 +80,41 @@ Json point_of(const Problem& problem, int ranks, int threads, const Json& summar
   return point;
 }
 
+/// The problem's point on one rank of one thread, or null when it failed.
+const Json* one_rank_point(const Json& points, const std::string& problem) {
+  for (const Json& p : points)
+    if (p["problem"] == problem && p["ranks"] == 1 && p["threads"] == 1 && p["status"] == "ok") return &p;
+  return nullptr;
+}
+
+double phase_sum(const Json& point, std::initializer_list<const char*> names) {
+  double total = 0.0;
+  for (const char* name : names) total += point[std::string(name) + "_s"].get<double>();
+  return total;
+}
+
+/// Every other launch's speed-ups over one rank of one thread, phase by phase (strong scaling).
+Json strong_speedups(const std::vector<Problem>& problems, const Json& points) {
+  Json speedups = Json::array();
+  for (const Problem& problem : problems) {
+    const Json* one = problem.weak ? nullptr : one_rank_point(points, problem.label);
+    if (!one) continue;
+    for (const Json& p : points) {
+      if (p["problem"] != problem.label || p["status"] != "ok" || &p == one) continue;
+      Json s = {{"problem", problem.label}, {"ranks", p["ranks"]}, {"threads", p["threads"]}};
+      for (const char* phase : phases) {
+        const double mine = phase_sum(p, {phase});
+        s[phase] = mine > 0.0 ? phase_sum(*one, {phase}) / mine : 0.0;
+      }
+      s["assembly_factorize_solve"] = phase_sum(*one, {"assembly", "factorize", "solve"}) /
+                                      phase_sum(p, {"assembly", "factorize", "solve"});
+      s["wall"] = phase_sum(*one, {"wall"}) / phase_sum(p, {"wall"});
+      speedups.push_back(s);
+    }
+  }
+  return speedups;
+}
+
 }  // namespace
 
 void scaling_study(const StudyOptions& options) {
@@ -124,29 +160,8 @@ void scaling_study(const StudyOptions& options) {
       points.push_back(point);
     }
 
-  // 3. Speed-ups against one rank of one thread, phase by phase (strong scaling).
-  Json speedups = Json::array();
-  for (const Problem& problem : problems) {
-    if (problem.weak) continue;
-    const Json* one = nullptr;
-    for (const Json& p : points)
-      if (p["problem"] == problem.label && p["ranks"] == 1 && p["threads"] == 1 && p["status"] == "ok") one = &p;
-    if (!one) continue;
-    for (const Json& p : points) {
-      if (p["problem"] != problem.label || p["status"] != "ok" || &p == one) continue;
-      Json s = {{"problem", problem.label}, {"ranks", p["ranks"]}, {"threads", p["threads"]}};
-      for (const char* phase : phases) {
-        const std::string key = std::string(phase) + "_s";
-        s[phase] = p[key].get<double>() > 0.0 ? (*one)[key].get<double>() / p[key].get<double>() : 0.0;
-      }
-      const double solve_one = (*one)["assembly_s"].get<double>() + (*one)["factorize_s"].get<double>() +
-                               (*one)["solve_s"].get<double>();
-      const double solve_p = p["assembly_s"].get<double>() + p["factorize_s"].get<double>() + p["solve_s"].get<double>();
-      s["assembly_factorize_solve"] = solve_one / solve_p;
-      s["wall"] = (*one)["wall_s"].get<double>() / p["wall_s"].get<double>();
-      speedups.push_back(s);
-    }
-  }
+  // 3. Speed-ups against one rank of one thread, written and plotted.
+  const Json speedups = strong_speedups(problems, points);
   write_json(runner.out_dir() + "/scaling.json", {{"study", "scaling"},
                                                    {"quick", options.quick},
                                                    {"cores", cores},
@@ -161,9 +176,7 @@ void scaling_study(const StudyOptions& options) {
                                          p["threads"].dump() + " threads ran (" + p["status"].dump() + ")");
   for (const Problem& problem : problems) {
     if (problem.weak) continue;  // each launch has its own mesh
-    const Json* one = nullptr;
-    for (const Json& p : points)
-      if (p["problem"] == problem.label && p["ranks"] == 1 && p["threads"] == 1) one = &p;
+    const Json* one = one_rank_point(points, problem.label);
     for (const Json& p : points) {
       if (p["problem"] != problem.label) continue;
       const double a = (*one)["probe_z_m"].get<double>(), b = p["probe_z_m"].get<double>();
