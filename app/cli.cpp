@@ -132,8 +132,8 @@ int run_command_line(const std::vector<std::string>& args) {
       return 0;
     }
   } catch (const std::exception& e) {
-    // Every rank reads the same scene and fails alike: rank 0 says why.
-    if (ranks.rank == 0) std::cerr << "kerf: error: " << e.what() << "\n";
+    if (ranks.distributed()) stop_every_rank(ranks, 2, e.what());
+    std::cerr << "kerf: error: " << e.what() << "\n";
     return 2;
   }
   try {
@@ -146,6 +146,8 @@ int run_command_line(const std::vector<std::string>& args) {
     if (!options.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
     return 0;
   } catch (const std::exception& e) {
+    // The summary says "error" (run_scene wrote it); the other ranks must not wait for this one.
+    if (ranks.distributed()) stop_every_rank(ranks, 1, e.what());
     std::cerr << "kerf: error: " << e.what() << "\n";
     return 1;
   }

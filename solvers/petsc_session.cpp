@@ -2,7 +2,10 @@
 
 #include <petscsys.h>
 
+#include <chrono>
 #include <cstdlib>
+#include <iostream>
+#include <thread>
 #include <string>
 
 #include "core/check.h"
@@ -33,6 +36,13 @@ void ensure_petsc_initialized() {
   check_petsc(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
   check_petsc(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
   std::atexit([] { PetscFinalize(); });
+}
+
+void stop_every_rank(const RankShare& ranks, int code, const std::string& message) {
+  if (ranks.rank != 0) std::this_thread::sleep_for(std::chrono::seconds(1));
+  std::cerr << "kerf: error: " << message << std::endl;
+  MPI_Abort(PETSC_COMM_WORLD, code);
+  std::_Exit(code);  // MPI_Abort does not return; should it, nothing may wait for this rank
 }
 
 RankShare mpi_ranks() {

@@ -4,6 +4,8 @@
 // every rank knows how many there are before any work. kerf passes no message
 // of its own: PETSc is the only message passing.
 
+#include <string>
+
 #include "core/rank_share.h"
 
 namespace kerf {
@@ -14,6 +16,13 @@ void check_petsc(int code, const char* call);
 /// Starts PETSc once (no signal handlers: kerf reports its own errors);
 /// finalized at exit.
 void ensure_petsc_initialized();
+
+/// Ends every rank's process after an error on this one, so that no rank
+/// waits forever for it in a collective call: `message` printed by rank 0 at
+/// once; another rank first gives rank 0 a second to stop the job itself (a
+/// failure every rank meets is then printed once), then prints and stops it.
+/// The launcher's exit code is `code`.
+[[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message);
 
 /// This process's rank among those mpirun started (Open MPI or another PMIx
 /// launcher: PETSc is then started here); 0 of 1 without a launcher, and
