@@ -78,9 +78,7 @@ int study_command(const Arguments& a) {
 /// Under mpirun only PETSc's solvers share a linear solve between ranks: a
 /// serial one is refused before any work (explicit runs solve nothing).
 void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
-  const bool solves = scene.solve.analysis == Analysis::static_analysis ||
-                      scene.solve.integrator != Integrator::central_difference;
-  if (ranks == 1 || !solves || scene.solve.linear_solver == LinearSolverKind::petsc) return;
+  if (ranks == 1 || !scene.solve.solves_linear_systems() || scene.solve.linear_solver == LinearSolverKind::petsc) return;
   throw Error(scene.locate("solve.linear_solver").describe() + ": " + to_string(scene.solve.linear_solver) +
               " cannot run on " + std::to_string(ranks) +
               " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");

@@ -51,7 +51,7 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, 
                    run.body->mean_neighbors()};
   const RowShare& share = run.mechanics->dof_share();
   report.parallel = {process_ranks().count, share.partial, share.owned_end - share.owned_begin,
-                     static_cast<Index>(share.touched.size())};
+                     share.partial ? static_cast<Index>(share.touched.size()) : run.mechanics->dof_count()};
   return run;
 }
 

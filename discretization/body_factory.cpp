@@ -35,9 +35,7 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 /// bound needs every cell), contact or cuts (issue 18: these still run whole
 /// on every rank, only the linear solve shared).
 RankShare fem_rank_share(const Scene& scene) {
-  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty() &&
-                            (scene.solve.analysis == Analysis::static_analysis ||
-                             scene.solve.integrator != Integrator::central_difference);
+  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty() && scene.solve.solves_linear_systems();
   return parts_add_up ? process_ranks() : RankShare{};
 }
 

@@ -135,6 +135,11 @@ struct SolveOptions {
   /// The material tangent implicit solves assemble: exact, or made positive
   /// semidefinite point by point (nonlinear materials under compression).
   TangentKind tangent = TangentKind::exact;
+
+  /// Static and implicit runs solve linear systems; explicit ones do not.
+  bool solves_linear_systems() const {
+    return analysis == Analysis::static_analysis || integrator != Integrator::central_difference;
+  }
 };
 
 struct Probe {

@@ -42,7 +42,7 @@ double hertz_depth(int dim, double force, double radius, double e_star) {
 ContactTerm::ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node)
     : first_dof_(first_dof), dim_(dofs_per_node) {
   static_ = scene.solve.analysis == Analysis::static_analysis;
-  explicit_ = !static_ && scene.solve.integrator == Integrator::central_difference;
+  explicit_ = !scene.solve.solves_linear_systems();
   for (const ContactSphere& c : scene.contact) spheres_.push_back(place(c, surface, scene.material, scene.solve.dt));
 }
 

@@ -139,7 +139,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
     return;
   }
   report_.add_stage("stiffness");
-  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
+  zero_stiffness();
   mechanics_.tangent_into(u, stiffness_, &f);
   stiffness_assembled_ = true;
   stiffness_changed_ = true;
@@ -181,6 +181,18 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
     return;
   }
   factorize_now(where);
+}
+
+void ImplicitSystem::zero_stiffness() {
+  const RowShare& share = mechanics_.dof_share();
+  if (!share.partial) return std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
+  // A partial matrix is written in its touched rows alone: only those need clearing.
+  const Index* outer = stiffness_.outerIndexPtr();
+  double* k = stiffness_.valuePtr();
+  const std::size_t count = share.touched.size();
+#pragma omp parallel for schedule(static)
+  for (std::size_t i = 0; i < count; ++i)
+    std::fill(k + outer[share.touched[i]], k + outer[share.touched[i] + 1], 0.0);
 }
 
 void ImplicitSystem::combine(double cm, double ck) {

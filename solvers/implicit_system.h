@@ -65,6 +65,8 @@ class ImplicitSystem {
   /// A x for values of A in K's pattern, whole on every rank (a partial
   /// matrix's product is taken over its touched rows and summed over the ranks).
   Vector times(const double* values, const Vector& x) const;
+  /// K's values set to zero before it is assembled again (a partial matrix's touched rows).
+  void zero_stiffness();
   /// A = c_M M + c_K K on the free dofs (this rank's rows of a partial matrix).
   void combine(double cm, double ck);
   void read_mass();

@@ -37,7 +37,6 @@ void MechanicalSystem::share_rows() {
   auto [begin, end] = even_part(body_.node_count(), ranks.rank, ranks.count);
   share_.owned_begin = dim * begin;
   share_.owned_end = ranks.rank + 1 == ranks.count ? dof_count() : dim * end;
-  for (Index d = share_.owned_begin; d < share_.owned_end; ++d) share_.touched.push_back(d);
 }
 
 Vec3 MechanicalSystem::dof_position(Index dof) const {

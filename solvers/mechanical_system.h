@@ -73,13 +73,14 @@ class MechanicalSystem {
   using BodyTangent = std::function<void(const Vector& body_u, Vector* body_f)>;
   /// The body's tangent, then the terms' (into `sink`); f over all dofs.
   void tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink, Vector* f) const;
+  /// The ranks' share of the dofs (share_), and rank_sum_ when the body is partitioned.
+  void share_rows();
 
   const DiscreteBody& body_;
   Index body_dofs_;
   std::unique_ptr<ContactTerm> contact_;
   RowShare share_;
   std::unique_ptr<RankSum> rank_sum_;
-  void share_rows();
   mutable Vector body_u_, body_f_;  // buffers of the calls made every step (internal and external force)
 };
 

@@ -5,8 +5,8 @@
 #include <chrono>
 #include <cstdlib>
 #include <iostream>
-#include <thread>
 #include <string>
+#include <thread>
 
 #include "core/check.h"
 

@@ -2,6 +2,7 @@
 
 #include <petscvec.h>
 
+#include "core/check.h"
 #include "solvers/petsc_session.h"
 
 namespace kerf {
@@ -11,7 +12,9 @@ struct RankSum::Petsc {
   Vec all = nullptr;         // the whole sum on this rank
   VecScatter to_all = nullptr;
   Vec number = nullptr;      // one entry a rank, for sums of numbers
-  std::vector<PetscInt> rows;
+  std::vector<PetscInt> rows;  // the entries this rank adds
+  std::vector<PetscScalar> values;  // their values, gathered for the call
+  Index size = 0;  // entries of the vectors summed
   ~Petsc() {
     if (to_all) VecScatterDestroy(&to_all);
     if (all) VecDestroy(&all);
@@ -20,22 +23,28 @@ struct RankSum::Petsc {
   }
 };
 
-RankSum::RankSum(Index size, Index owned_begin, Index owned_end, std::vector<Index> touched)
-    : petsc_(std::make_unique<Petsc>()), touched_(std::move(touched)), values_(touched_.size()) {
+RankSum::RankSum(Index size, Index owned_begin, Index owned_end, const std::vector<Index>& touched)
+    : petsc_(std::make_unique<Petsc>()) {
   ensure_petsc_initialized();
+  petsc_->size = size;
   check_petsc(VecCreateMPI(PETSC_COMM_WORLD, owned_end - owned_begin, size, &petsc_->owned), "VecCreateMPI");
   check_petsc(VecScatterCreateToAll(petsc_->owned, &petsc_->to_all, &petsc_->all), "VecScatterCreateToAll");
   check_petsc(VecCreateMPI(PETSC_COMM_WORLD, 1, PETSC_DETERMINE, &petsc_->number), "VecCreateMPI");
-  petsc_->rows.assign(touched_.begin(), touched_.end());
+  petsc_->rows.assign(touched.begin(), touched.end());
+  petsc_->values.resize(touched.size());
 }
 
 RankSum::~RankSum() = default;
 
 void RankSum::sum(Vector& v) const {
-  for (std::size_t k = 0; k < touched_.size(); ++k) values_[k] = v[touched_[k]];
+  KERF_CHECK(v.size() == petsc_->size, "internal: a sum over ranks of ", v.size(), " entries; expected ",
+             petsc_->size);
+  std::vector<PetscInt>& rows = petsc_->rows;
+  std::vector<PetscScalar>& values = petsc_->values;
+  for (std::size_t k = 0; k < rows.size(); ++k) values[k] = v[rows[k]];
   Vec owned = petsc_->owned, all = petsc_->all;
   check_petsc(VecZeroEntries(owned), "VecZeroEntries");
-  check_petsc(VecSetValues(owned, static_cast<PetscInt>(values_.size()), petsc_->rows.data(), values_.data(), ADD_VALUES),
+  check_petsc(VecSetValues(owned, static_cast<PetscInt>(rows.size()), rows.data(), values.data(), ADD_VALUES),
               "VecSetValues");
   check_petsc(VecAssemblyBegin(owned), "VecAssemblyBegin");
   check_petsc(VecAssemblyEnd(owned), "VecAssemblyEnd");

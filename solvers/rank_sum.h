@@ -15,7 +15,7 @@ class RankSum {
  public:
   /// `size` entries, of which this rank owns [owned_begin, owned_end) (the
   /// ranks' ranges follow each other in rank order) and adds `touched`.
-  RankSum(Index size, Index owned_begin, Index owned_end, std::vector<Index> touched);
+  RankSum(Index size, Index owned_begin, Index owned_end, const std::vector<Index>& touched);
   ~RankSum();
   RankSum(const RankSum&) = delete;
   RankSum& operator=(const RankSum&) = delete;
@@ -25,10 +25,8 @@ class RankSum {
   double sum(double x) const;
 
  private:
-  struct Petsc;
+  struct Petsc;  // PETSc's objects and the gathered entries (reused by every call)
   std::unique_ptr<Petsc> petsc_;
-  std::vector<Index> touched_;
-  mutable std::vector<double> values_;
 };
 
 }  // namespace kerf

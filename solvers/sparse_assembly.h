@@ -27,11 +27,11 @@ CsrView csr_view(SparseMatrix& matrix);
 /// Positions of the diagonal entries in matrix.valuePtr().
 std::vector<Index> diagonal_positions(const SparseMatrix& matrix);
 
-/// The split of dofs into free and constrained, and the restriction A -> A_ff.
 /// y = A x, A's values in `values` (A's pattern), over the listed rows only
 /// (zero elsewhere): a rank's partial matrix holds values in its touched rows alone.
 Vector rows_times(const SparseMatrix& pattern, const double* values, const std::vector<Index>& rows, const Vector& x);
 
+/// The split of dofs into free and constrained, and the restriction A -> A_ff.
 class FreeDofs {
  public:
   FreeDofs(Index dof_count, const std::vector<DirichletDof>& constrained);
