@@ -137,9 +137,9 @@ int run_command_line(const std::vector<std::string>& args) {
   try {
     RunOptions options;
     options.out_dir = a.out;
-    // Under mpirun every rank runs the scene; rank 0 alone prints and writes.
+    // Under mpirun every rank runs the scene; rank 0 alone prints and writes (but the series' pieces).
     options.quiet = a.quiet || ranks.rank != 0;
-    options.writes_files = ranks.rank == 0;
+    options.ranks = ranks;
     RunOutcome outcome = run_scene(scene, options);
     if (!options.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
     return 0;

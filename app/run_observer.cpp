@@ -2,6 +2,7 @@
 
 #include "discretization/body_capabilities.h"
 #include "discretization/cut_snapshot.h"
+#include "solvers/petsc_session.h"
 
 namespace kerf {
 namespace {
@@ -15,11 +16,11 @@ std::vector<std::string> table_columns(const ProbeSet& probes) {
 }  // namespace
 
 RunObserver::RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes,
-                         bool writes_files)
-    : cuts_(std::move(cuts)) {
-  if (!writes_files) return;
-  table_.emplace(directory + "/probes.csv", table_columns(probes));
-  if (scene.output.vtk_every > 0) vtk_ = std::make_unique<VtkSeries>(directory, scene.name);
+                         RankShare ranks)
+    : cuts_(std::move(cuts)), writes_files_(ranks.rank == 0) {
+  if (scene.output.vtk_every > 0)
+    vtk_ = std::make_unique<VtkSeries>(directory, scene.name, ranks, ranks.distributed() ? wait_for_every_rank : nullptr);
+  if (writes_files_) table_.emplace(directory + "/probes.csv", table_columns(probes));
 }
 
 void RunObserver::reset_loads(const RunParts& run, const SolverState& state) {
@@ -53,11 +54,13 @@ void RunObserver::write(const RunParts& run, const SolverState& state, std::size
     const Vector& u = run.mechanics->body_part(state.u, body_u_);
     BodySnapshot body, cut;
     run.body->snapshot(u, body);
-    cut_snapshot(*cuts_, state.t, *run.body, u, cut);
     std::vector<LatticeSnapshot> lattices;
     const bool grids_changed = growths != lattices_written_at_;
-    if (const auto* grids = capability<EnrichmentLattices>(*run.body); grids && grids_changed)
-      lattices = grids->enrichment_lattices();
+    if (writes_files_) {  // the other ranks write only their piece of the body
+      cut_snapshot(*cuts_, state.t, *run.body, u, cut);
+      if (const auto* grids = capability<EnrichmentLattices>(*run.body); grids && grids_changed)
+        lattices = grids->enrichment_lattices();
+    }
     vtk_->write(body, state.t, &cut, grids_changed ? &lattices : nullptr);
     lattices_written_at_ = growths;
     report.add_stage("vtk");

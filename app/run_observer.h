@@ -18,10 +18,11 @@ namespace kerf {
 class RunObserver {
  public:
   /// Opens probes.csv (its columns from `probes`) and, when the scene asks
-  /// for ParaView output, the series, in `directory`; with `writes_files`
-  /// false (an MPI rank other than 0) it evaluates the same and writes nothing.
+  /// for ParaView output, the series, in `directory`. Across `ranks`, rank 0
+  /// writes them and every rank its piece of the body's series; the others
+  /// evaluate the same probes and write nothing else.
   RunObserver(const Scene& scene, const std::string& directory, SharedCuts cuts, const ProbeSet& probes,
-              bool writes_files = true);
+              RankShare ranks = {});
 
   /// The loads the next step starts from: at the start, and after a cut
   /// changed the discretization (the loads as the new one integrates them).
@@ -38,6 +39,7 @@ class RunObserver {
 
  private:
   SharedCuts cuts_;
+  bool writes_files_;
   std::unique_ptr<VtkSeries> vtk_;
   std::optional<ProbeTable> table_;
   EnergyState energy_;

@@ -18,6 +18,7 @@
 #include "output/atomic_file.h"
 #include "problem/scene_json.h"
 #include "problem/scene_validation.h"
+#include "solvers/petsc_session.h"
 
 namespace kerf {
 namespace {
@@ -99,8 +100,9 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   const SharedCuts cuts = refuse_unrunnable(scene);
   RunOutcome outcome;
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
-  const bool writes = options.writes_files;
+  const bool writes = options.writes_files();
   if (writes) std::filesystem::create_directories(outcome.directory);
+  if (options.ranks.distributed()) wait_for_every_rank();  // they write pieces in it
   const std::string summary_path = outcome.directory + "/summary.json";
   Scene resolved = scene;
   resolved.output.dir = outcome.directory;
@@ -115,7 +117,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     SolverState state;
     RunParts run = set_up(scene, cuts, state, report);
     report.setup_seconds = now_seconds() - start;
-    RunObserver observer(scene, outcome.directory, cuts, *run.probes, writes);
+    RunObserver observer(scene, outcome.directory, cuts, *run.probes, options.ranks);
     observer.write(run, state, 0, report);
     const double loop_start = now_seconds();
     step(scene, cuts, run, state, observer, report, summary, options.quiet);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "core/rank_share.h"
 #include "core/run_report.h"
 #include "discretization/cut_timeline.h"
 #include "problem/scene.h"
@@ -12,7 +13,8 @@ namespace kerf {
 struct RunOptions {
   std::string out_dir;  // overrides output.dir when not empty
   bool quiet = false;
-  bool writes_files = true;  // false: the run is the same, nothing is written (MPI ranks other than 0)
+  RankShare ranks;  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
+  bool writes_files() const { return ranks.rank == 0; }
 };
 
 struct RunOutcome {

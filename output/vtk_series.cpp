@@ -18,6 +18,8 @@
 
 #include "core/check.h"
 #include "output/atomic_file.h"
+#include "output/pvtu_file.h"
+#include "output/snapshot_piece.h"
 
 namespace kerf {
 namespace {
@@ -95,28 +97,56 @@ void write_vti(const LatticeSnapshot& l, const std::string& path) {
   commit_file(temporary, path);
 }
 
-VtkSeries::VtkSeries(std::string directory, std::string name)
-    : directory_(std::move(directory)), name_(std::move(name)), pvd_path_(directory_ + "/" + name_ + ".pvd") {}
+VtkSeries::VtkSeries(std::string directory, std::string name, RankShare ranks,
+                     std::function<void()> wait_for_every_rank)
+    : directory_(std::move(directory)),
+      name_(std::move(name)),
+      pvd_path_(directory_ + "/" + name_ + ".pvd"),
+      ranks_(ranks),
+      wait_for_every_rank_(std::move(wait_for_every_rank)) {
+  KERF_CHECK(!ranks_.distributed() || wait_for_every_rank_, "a series across ranks needs a way to wait for them");
+}
+
+std::string VtkSeries::file_name(const std::string& part, std::size_t step, const std::string& ending) const {
+  char number[32];
+  std::snprintf(number, sizeof number, "_%04zu", step);
+  return name_ + part + number + ending;
+}
+
+std::string VtkSeries::write_pieces(const BodySnapshot& snapshot, std::size_t step) {
+  auto piece_name = [&](int rank) { return file_name("", step, "_" + std::to_string(rank) + ".vtu"); };
+  const auto cells = even_part(static_cast<Index>(snapshot.cell_types.size()), ranks_.rank, ranks_.count);
+  const BodySnapshot piece = snapshot_piece(snapshot, cells, ranks_.rank);
+  write_vtu(piece, directory_ + "/" + piece_name(ranks_.rank));
+  wait_for_every_rank_();  // the .pvtu names only pieces that are on disk
+  const std::string pvtu = file_name("", step, ".pvtu");
+  if (ranks_.rank != 0) return pvtu;
+  std::vector<std::string> pieces;
+  for (int rank = 0; rank < ranks_.count; ++rank) pieces.push_back(piece_name(rank));
+  write_pvtu(piece, pieces, directory_ + "/" + pvtu);
+  return pvtu;
+}
 
 std::string VtkSeries::write(const BodySnapshot& snapshot, double time, const BodySnapshot* cut,
                              const std::vector<LatticeSnapshot>* lattices) {
-  auto file_name = [&](const std::string& part, const char* extension) {
-    char file[512];
-    std::snprintf(file, sizeof file, "%s%s_%04zu.%s", name_.c_str(), part.c_str(), entries_.size(), extension);
-    return std::string(file);
-  };
-  Entry entry{time, {file_name("", "vtu")}};
-  const std::string path = directory_ + "/" + entry.parts[0];
-  write_vtu(snapshot, path);
+  const std::size_t step = steps_++;
+  Entry entry{time, {}};
+  if (ranks_.distributed()) {
+    entry.parts.push_back(write_pieces(snapshot, step));
+    if (ranks_.rank != 0) return directory_ + "/" + entry.parts[0];
+  } else {
+    entry.parts.push_back(file_name("", step, ".vtu"));
+    write_vtu(snapshot, directory_ + "/" + entry.parts[0]);
+  }
   entry.parts.push_back("");
   if (cut && !cut->cell_types.empty()) {
-    entry.parts[1] = file_name("_cut", "vtu");
+    entry.parts[1] = file_name("_cut", step, ".vtu");
     write_vtu(*cut, directory_ + "/" + entry.parts[1]);
   }
   if (lattices) {
     lattice_files_.resize(std::max(lattice_files_.size(), lattices->size()));
     for (std::size_t g = 0; g < lattices->size(); ++g) {
-      lattice_files_[g] = file_name("_" + (*lattices)[g].name, "vti");
+      lattice_files_[g] = file_name("_" + (*lattices)[g].name, step, ".vti");
       write_vti((*lattices)[g], directory_ + "/" + lattice_files_[g]);
     }
   }
@@ -132,7 +162,7 @@ std::string VtkSeries::write(const BodySnapshot& snapshot, double time, const Bo
             << "\"/>\n";
   pvd << "  </Collection>\n</VTKFile>\n";
   write_file_atomically(pvd_path_, pvd.str());
-  return path;
+  return directory_ + "/" + entries_.back().parts[0];
 }
 
 }  // namespace kerf

@@ -45,6 +45,8 @@ void stop_every_rank(const RankShare& ranks, int code, const std::string& messag
   std::_Exit(code);  // MPI_Abort does not return; should it, nothing may wait for this rank
 }
 
+void wait_for_every_rank() { check_petsc(PetscBarrier(nullptr), "PetscBarrier"); }
+
 RankShare mpi_ranks() {
   if (!launched_by_mpi()) return {};
   ensure_petsc_initialized();

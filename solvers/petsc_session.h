@@ -24,6 +24,10 @@ void ensure_petsc_initialized();
 /// The launcher's exit code is `code`.
 [[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message);
 
+/// Returns when every rank has called it (files one rank writes that another
+/// needs: the output folder, the pieces of a .pvtu).
+void wait_for_every_rank();
+
 /// This process's rank among those mpirun started (Open MPI or another PMIx
 /// launcher: PETSc is then started here); 0 of 1 without a launcher, and
 /// PETSc is left unstarted.
