@@ -13,7 +13,7 @@ namespace kerf {
 struct RunOptions {
   std::string out_dir;  // overrides output.dir when not empty
   bool quiet = false;
-  RankShare ranks;  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
+  RankShare ranks{};  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
   bool writes_files() const { return ranks.rank == 0; }
 };
 
