@@ -130,7 +130,11 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     write_report(report, summary);
     summary["status"] = "error";
     summary["error"] = e.what();
+    if (options.ranks.distributed()) summary["error_rank"] = options.ranks.rank;
     if (writes) write_file_atomically(summary_path, summary.dump(2));
+    // Failing alone, this rank leaves rank 0 waiting in a collective: it must say it itself.
+    if (!writes && options.ranks.distributed())
+      stop_every_rank(options.ranks, 1, e.what(), [&] { write_file_atomically(summary_path, summary.dump(2)); });
     throw;
   }
   return outcome;

@@ -30,7 +30,9 @@ SharedCuts refuse_unrunnable(const Scene& scene);
 
 /// Writes summary.json (status "ok"), probes.csv and the ParaView series.
 /// On failure, writes summary.json with status "error" and the message, keeps
-/// every file already written, and rethrows.
+/// every file already written, and rethrows; on an MPI rank other than 0 it
+/// stops every rank instead (stop_every_rank), writing the summary itself if
+/// rank 0 did not stop the job first.
 RunOutcome run_scene(const Scene& scene, const RunOptions& options = {});
 
 }  // namespace kerf

@@ -38,9 +38,18 @@ void ensure_petsc_initialized() {
   std::atexit([] { PetscFinalize(); });
 }
 
-void stop_every_rank(const RankShare& ranks, int code, const std::string& message) {
-  if (ranks.rank != 0) std::this_thread::sleep_for(std::chrono::seconds(1));
-  std::cerr << "kerf: error: " << message << std::endl;
+void stop_every_rank(const RankShare& ranks, int code, const std::string& message,
+                     const std::function<void()>& if_alone) {
+  if (ranks.rank != 0) {
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    try {
+      if (if_alone) if_alone();
+    } catch (const std::exception& e) {
+      std::cerr << "kerf: error: rank " << ranks.rank << ": " << e.what() << std::endl;
+    }
+  }
+  std::cerr << "kerf: error: " << (ranks.rank != 0 ? "rank " + std::to_string(ranks.rank) + ": " : "") << message
+            << std::endl;
   MPI_Abort(PETSC_COMM_WORLD, code);
   std::_Exit(code);  // MPI_Abort does not return; should it, nothing may wait for this rank
 }

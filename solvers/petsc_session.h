@@ -4,6 +4,7 @@
 // every rank knows how many there are before any work. kerf passes no message
 // of its own: PETSc is the only message passing.
 
+#include <functional>
 #include <string>
 
 #include "core/rank_share.h"
@@ -20,9 +21,11 @@ void ensure_petsc_initialized();
 /// Ends every rank's process after an error on this one, so that no rank
 /// waits forever for it in a collective call: `message` printed by rank 0 at
 /// once; another rank first gives rank 0 a second to stop the job itself (a
-/// failure every rank meets is then printed once), then prints and stops it.
-/// The launcher's exit code is `code`.
-[[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message);
+/// failure every rank meets is then printed once), then, the failure being
+/// its own, calls `if_alone` (its last words: the summary rank 0 will not
+/// write), prints and stops it. The launcher's exit code is `code`.
+[[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message,
+                                  const std::function<void()>& if_alone = {});
 
 /// Returns when every rank has called it (files one rank writes that another
 /// needs: the output folder, the pieces of a .pvtu).
