@@ -88,7 +88,8 @@ class ElementStepBound {
  public:
   virtual ~ElementStepBound() = default;
   /// A safe central-difference step with the lumped mass (s), from element
-  /// frequency bounds at the undeformed state.
+  /// frequency bounds at the undeformed state (over this rank's cells when
+  /// the body is partitioned: the smallest over the ranks is the bound).
   virtual double critical_time_step() const = 0;
 };
 

@@ -31,11 +31,10 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 }
 
 /// Under MPI, a FEM body assembles only its rank's cells where every term of
-/// the run can add parts across ranks: not yet explicit runs (their step
-/// bound needs every cell), contact or cuts (issue 18: these still run whole
-/// on every rank, only the linear solve shared).
+/// the run can add parts across ranks: not yet with contact or cuts (issue
+/// 18: these still run whole on every rank, only the linear solve shared).
 RankShare fem_rank_share(const Scene& scene) {
-  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty() && scene.solve.solves_linear_systems();
+  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty();
   return parts_add_up ? process_ranks() : RankShare{};
 }
 

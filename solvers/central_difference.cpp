@@ -108,12 +108,20 @@ class CentralDifferenceStepper final : public Stepper {
   /// (FEM; safe but often twice too small) and 2 / omega_max by Lanczos on the
   /// assembled stiffness at rest (an upper bound on omega_max), with stiffness damping.
   double estimate_critical_step() {
+    // A partitioned body's bound and stiffness are over its own cells: the ranks' parts are combined.
+    const RankSum* ranks = mechanics_.rank_sum();
     std::optional<double> element_bound;
-    if (const auto* bound = capability<ElementStepBound>(mechanics_.body())) element_bound = bound->critical_time_step();
+    if (const auto* bound = capability<ElementStepBound>(mechanics_.body()))
+      element_bound = ranks ? ranks->smallest(bound->critical_time_step()) : bound->critical_time_step();
     report_.add_stage("stiffness");
     SparseMatrix K = build_pattern(mechanics_);
-    mechanics_.tangent(Vector::Zero(mechanics_.dof_count()), add_into(K), nullptr);
-    const EigenvalueBound omega2 = largest_eigenvalue(K, mass_, FreeDofs(mechanics_.dof_count(), constrained_));
+    mechanics_.tangent_into(Vector::Zero(mechanics_.dof_count()), K, nullptr);
+    auto stiffness_times = [&](const Vector& x, Vector& y) {
+      y = K * x;
+      if (ranks) ranks->sum(y);
+    };
+    const EigenvalueBound omega2 =
+        largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_));
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
     const double step = damped_critical_step(std::max(lanczos_step, element_bound.value_or(0.0)), beta_);
     report_.solver.critical_dt_s = step;

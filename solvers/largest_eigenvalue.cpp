@@ -5,17 +5,17 @@
 
 namespace kerf {
 
-EigenvalueBound largest_eigenvalue(const SparseMatrix& K, const Vector& lumped_mass, const FreeDofs& free,
-                                   int max_iterations) {
+EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const Vector& lumped_mass,
+                                   const FreeDofs& free, int max_iterations) {
   const Index n = free.free_count();
   const int m = std::min<int>(max_iterations, n);
   // Symmetric form A = S K S with S = M^-1/2, restricted to the free dofs.
-  Vector scale = Vector::Zero(K.rows());
+  Vector scale = Vector::Zero(lumped_mass.size()), y;
   for (Index d : free.free_dofs()) scale[d] = 1.0 / std::sqrt(lumped_mass[d]);
   auto apply = [&](const Vector& q_free) {
-    Vector full = Vector::Zero(K.rows());
+    Vector full = Vector::Zero(lumped_mass.size());
     for (Index i = 0; i < n; ++i) full[free.free_dofs()[i]] = scale[free.free_dofs()[i]] * q_free[i];
-    Vector y = K * full;
+    stiffness_times(full, y);
     Vector out(n);
     for (Index i = 0; i < n; ++i) out[i] = scale[free.free_dofs()[i]] * y[free.free_dofs()[i]];
     return out;

@@ -1,6 +1,8 @@
 #pragma once
 // The largest eigenvalue of M^-1 K on the free dofs (M diagonal), by Lanczos
 // with full reorthogonalisation: omega_max^2 for the critical explicit step.
+#include <functional>
+
 #include "solvers/sparse_assembly.h"
 
 namespace kerf {
@@ -11,7 +13,10 @@ struct EigenvalueBound {
   int iterations = 0;
 };
 
-EigenvalueBound largest_eigenvalue(const SparseMatrix& K, const Vector& lumped_mass, const FreeDofs& free,
-                                   int max_iterations = 80);
+/// y = K x for x over all dofs (a partitioned body's parts added across ranks).
+using StiffnessTimes = std::function<void(const Vector& x, Vector& y)>;
+
+EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const Vector& lumped_mass,
+                                   const FreeDofs& free, int max_iterations = 80);
 
 }  // namespace kerf

@@ -56,14 +56,25 @@ void RankSum::sum(Vector& v) const {
   check_petsc(VecRestoreArrayRead(all, &whole), "VecRestoreArrayRead");
 }
 
-double RankSum::sum(double x) const {
+void RankSum::set_number(double x) const {
   PetscScalar* mine = nullptr;
   check_petsc(VecGetArray(petsc_->number, &mine), "VecGetArray");
   mine[0] = x;
   check_petsc(VecRestoreArray(petsc_->number, &mine), "VecRestoreArray");
+}
+
+double RankSum::sum(double x) const {
+  set_number(x);
   PetscScalar total = 0.0;
   check_petsc(VecSum(petsc_->number, &total), "VecSum");
   return total;
+}
+
+double RankSum::smallest(double x) const {
+  set_number(x);
+  PetscReal least = 0.0;
+  check_petsc(VecMin(petsc_->number, nullptr, &least), "VecMin");
+  return least;
 }
 
 }  // namespace kerf

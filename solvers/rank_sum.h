@@ -23,8 +23,11 @@ class RankSum {
   /// v holds this rank's part (zero outside `touched`); on return, the sum of every rank's.
   void sum(Vector& v) const;
   double sum(double x) const;
+  /// The smallest of every rank's x.
+  double smallest(double x) const;
 
  private:
+  void set_number(double x) const;  // this rank's entry of the vector of numbers
   struct Petsc;  // PETSc's objects and the gathered entries (reused by every call)
   std::unique_ptr<Petsc> petsc_;
 };

@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Whether two runs' summary.json give the same probes: every value of a
 probe within `tolerance` relative to the largest magnitude of that probe's
-values in the reference run. usage: same_probes.py REFERENCE OTHER TOLERANCE"""
+values in the reference run; and the same critical explicit step (the
+Lanczos and the element bound) when the reference has one.
+usage: same_probes.py REFERENCE OTHER TOLERANCE"""
 import json
 import sys
 
@@ -37,6 +39,12 @@ def main():
         difference = max(abs(x - y) for x, y in zip(a, b)) / scale
         print(f"{name}: relative difference {difference:.3g}")
         worst = max(worst, difference)
+    for key in ("critical_dt_s", "critical_dt_element_bound_s"):
+        if reference["solver"].get(key):
+            a, b = reference["solver"][key], other["solver"].get(key, float("nan"))
+            difference = abs(a - b) / abs(a)
+            print(f"{key}: relative difference {difference:.3g}")
+            worst = max(worst, difference)
     if not worst <= tolerance:
         sys.exit(f"FAILED: relative difference {worst:.3g} above {tolerance:g}")
     print(f"ok: largest relative difference {worst:.3g} <= {tolerance:g}")

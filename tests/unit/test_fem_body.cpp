@@ -2,6 +2,8 @@
 // space, tangent by finite differences for every material, mass and load totals.
 #include <gtest/gtest.h>
 
+#include <limits>
+
 #include <Eigen/Geometry>
 #include <Eigen/SparseCholesky>
 
@@ -171,7 +173,7 @@ TEST_P(FemElementTest, ThreeRanksPartsAddUpToTheWhole) {
   EXPECT_FALSE(whole.partitioned());
   SparseMatrix K_sum = build_pattern(whole), M_sum = build_pattern(whole);
   Vector f_sum = Vector::Zero(f.size()), lumped_sum = Vector::Zero(f.size());
-  double energy_sum = 0.0;
+  double energy_sum = 0.0, smallest_step = std::numeric_limits<double>::infinity();
   Index next_owned = 0;
   for (int rank = 0; rank < 3; ++rank) {
     const FemBody part(scene, mesh, RankShare{rank, 3});
@@ -194,8 +196,10 @@ TEST_P(FemElementTest, ThreeRanksPartsAddUpToTheWhole) {
     part.consistent_mass(add_into(M_sum));
     lumped_sum += part.lumped_mass();
     energy_sum += part.strain_energy(u);
+    smallest_step = std::min(smallest_step, part.critical_time_step());
   }
   EXPECT_EQ(next_owned, whole.node_count());
+  EXPECT_EQ(smallest_step, whole.critical_time_step());
   EXPECT_LT((K_sum - K).norm(), 1e-12 * K.norm());
   EXPECT_LT((f_sum - f).norm(), 1e-12 * f.norm());
   EXPECT_LT((M_sum - M).norm(), 1e-12 * M.norm());
