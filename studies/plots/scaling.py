@@ -30,9 +30,9 @@ for ax, problem in zip(axes[0], problems):
         ax.set_title(f"{problem}: {mine[0]['dofs']}-{mine[-1]['dofs']} dofs")
     else:
         one = mine[0]
-        for phase in phases:
-            ax.plot(ranks, [one[phase + "_s"] / p[phase + "_s"] if p[phase + "_s"] > 0 else 0 for p in mine], "o-",
-                    label=phase)
+        for phase in phases + ["loop"]:
+            if one[phase + "_s"] > 0:
+                ax.plot(ranks, [one[phase + "_s"] / p[phase + "_s"] for p in mine], "o-", label=phase)
         ax.plot(ranks, [one["wall_s"] / p["wall_s"] for p in mine], "k^--", label="wall")
         ax.plot(ranks, ranks, ":", color="grey", label="ideal")
         ax.set_ylabel("speed-up against 1 rank")
