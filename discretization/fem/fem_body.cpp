@@ -186,33 +186,49 @@ void FemBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   loop(u, &forward, f, nullptr);
 }
 
+namespace {
+
+/// Where each of cell `nodes`' node-pair blocks starts in its rows of `m`
+/// (npc^2 offsets into `out`), or false when the pattern lacks one.
+bool cell_block_offsets(std::span<const Index> nodes, int dpn, const CsrView& m, Index* out) {
+  const int npc = static_cast<int>(nodes.size());
+  for (int a = 0; a < npc; ++a) {
+    const Index row = dpn * nodes[a];
+    if (row + dpn > m.rows) return false;
+    const Index* begin = m.inner + m.outer[row];
+    const Index* end = m.inner + m.outer[row + 1];
+    for (int b = 0; b < npc; ++b) {
+      const Index offset = static_cast<Index>(std::lower_bound(begin, end, dpn * nodes[b]) - begin);
+      // The same offset serves the node's other rows: their patterns must agree.
+      for (int i = 0; i < dpn; ++i)
+        for (int k = 0; k < dpn; ++k) {
+          const Index p = m.outer[row + i] + offset + k;
+          if (p >= m.outer[row + i + 1] || m.inner[p] != dpn * nodes[b] + k) return false;
+        }
+      out[a * npc + b] = offset;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
 const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
   if (m.rows == offsets_pattern_.rows && m.outer == offsets_pattern_.outer && m.inner == offsets_pattern_.inner &&
       !pair_offsets_.empty())
     return pair_offsets_;
-  const int dpn = mesh_.dimension;
-  pair_offsets_.resize(static_cast<std::size_t>(mesh_.cell_count()) * npc_ * npc_);
-  for (Index c = 0; c < mesh_.cell_count(); ++c) {
-    auto nodes = mesh_.cell(c);
-    for (int a = 0; a < npc_; ++a) {
-      const Index row = dpn * nodes[a];
-      KERF_CHECK(row < m.rows, "internal: cell ", c, " writes row ", row, " of a ", m.rows, "-row matrix");
-      const Index* begin = m.inner + m.outer[row];
-      const Index* end = m.inner + m.outer[row + 1];
-      for (int b = 0; b < npc_; ++b) {
-        const Index* at = std::lower_bound(begin, end, dpn * nodes[b]);
-        const Index offset = static_cast<Index>(at - begin);
-        // The same offset serves the node's other rows: their patterns must agree.
-        for (int i = 0; i < dpn; ++i)
-          for (int k = 0; k < dpn; ++k) {
-            const Index p = m.outer[row + i] + offset + k;
-            KERF_CHECK(p < m.outer[row + i + 1] && m.inner[p] == dpn * nodes[b] + k,
-                       "internal: the matrix's pattern lacks cell ", c, "'s block (", a, ", ", b, ")");
-          }
-        pair_offsets_[(static_cast<std::size_t>(c) * npc_ + a) * npc_ + b] = offset;
-      }
+  // This rank's cells alone (all in a serial run), indexed from cell_begin_;
+  // each cell fills its own entries, so the cells run in parallel.
+  pair_offsets_.resize(static_cast<std::size_t>(cell_end_ - cell_begin_) * npc_ * npc_);
+  Index lacking = -1;  // a cell whose blocks the pattern lacks (no exception may leave the loop)
+#pragma omp parallel for schedule(static)
+  for (Index c = cell_begin_; c < cell_end_; ++c)
+    if (!cell_block_offsets(mesh_.cell(c), mesh_.dimension, m,
+                            &pair_offsets_[static_cast<std::size_t>(c - cell_begin_) * npc_ * npc_])) {
+#pragma omp critical(kerf_pair_offsets)
+      lacking = c;
     }
-  }
+  KERF_CHECK(lacking < 0, "internal: the matrix's pattern lacks a block of cell ", lacking);
   offsets_pattern_ = m;
   return pair_offsets_;
 }
@@ -222,7 +238,7 @@ void FemBody::add_tangent_into(const Vector& u, const CsrView& m, Vector* f) con
   const int dpn = mesh_.dimension, npc = npc_, n = dpn * npc;
   // Cells of one phase share no node, hence no row: no two threads add to one value.
   ElementSink write = [&](Index c, std::span<const Index> dofs, std::span<const double> block) {
-    const Index* off = &offsets[static_cast<std::size_t>(c) * npc * npc];
+    const Index* off = &offsets[static_cast<std::size_t>(c - cell_begin_) * npc * npc];
     for (int a = 0; a < npc; ++a)
       for (int i = 0; i < dpn; ++i) {
         double* row = m.values + m.outer[dofs[dpn * a + i]];
