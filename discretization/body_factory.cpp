@@ -30,10 +30,11 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
   return mesh_box(request);
 }
 
-/// Under MPI, a FEM body assembles only its rank's cells where every term of
-/// the run can add parts across ranks: not yet with contact or cuts (issue
-/// 18: these still run whole on every rank, only the linear solve shared).
-RankShare fem_rank_share(const Scene& scene) {
+/// Under MPI, a FEM or nodal body computes only its rank's cells or nodes
+/// where every term of the run can add parts across ranks: not yet with
+/// contact or cuts (issue 18: these still run whole on every rank, only the
+/// linear solve shared), nor EFG.
+RankShare rank_share(const Scene& scene) {
   const bool parts_add_up = scene.contact.empty() && scene.cuts.empty();
   return parts_add_up ? process_ranks() : RankShare{};
 }
@@ -64,7 +65,8 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts 
   report.add_stage("nodes");
   MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
   report.add_stage("shape functions");
-  if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain));
+  if (scene.discretization.method == Method::nodal)
+    return std::make_unique<NodalBody>(scene, std::move(domain), rank_share(scene));
   return std::make_unique<EfgBody>(scene, std::move(domain));
 }
 
@@ -85,7 +87,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
-  return std::make_unique<FemBody>(scene, std::move(mesh), fem_rank_share(scene));
+  return std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene));
 }
 
 }  // namespace kerf

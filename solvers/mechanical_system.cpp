@@ -81,12 +81,14 @@ void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f
 
 void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const {
   const BlockSink sink = add_into(K);
-  const MatrixAssembly* direct = capability<MatrixAssembly>(body_);
-  if (!direct) return tangent(u, sink, f);
-  const CsrView view = csr_view(K);
-  tangent_with([&](const Vector& body_u, Vector* body_f) { direct->add_tangent_into(body_u, view, body_f); }, u,
-               sink, f);
-  if (rank_sum_ && f) rank_sum_->sum(*f);
+  if (const MatrixAssembly* direct = capability<MatrixAssembly>(body_)) {
+    const CsrView view = csr_view(K);
+    tangent_with([&](const Vector& body_u, Vector* body_f) { direct->add_tangent_into(body_u, view, body_f); }, u,
+                 sink, f);
+  } else {
+    tangent_with([&](const Vector& body_u, Vector* body_f) { body_.tangent(body_u, sink, body_f); }, u, sink, f);
+  }
+  if (rank_sum_ && f) rank_sum_->sum(*f);  // K stays this rank's part: the solver adds the parts
 }
 
 void MechanicalSystem::tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "core/check.h"
 #include "discretization/meshless/mls_shape.h"
@@ -39,10 +40,11 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
 
 }  // namespace
 
-NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
+NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
       stabilized_(scene.discretization.meshless.stabilization),
       scene_(scene) {
+  share_nodes(share);
   const NodeSet& nodes = domain_.nodes();
   if (stabilized_) {
     const std::size_t slots = domain_.at_nodes().neighbours.index.size();
@@ -61,7 +63,20 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain)
   dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
 }
 
+void NodalBody::share_nodes(RankShare share) {
+  share_ = share;
+  own_nodes_ = even_part(node_count(), share.rank, share.count);
+  // Its own nodes and their neighbours: the rows its nodes' terms reach.
+  std::vector<char> touched(node_count(), 0);
+  for (Index I = own_nodes_.first; I < own_nodes_.second; ++I)
+    for (Index J : domain_.at_nodes().neighbours.of(I)) touched[J] = 1;
+  touched_nodes_.clear();
+  for (Index n = 0; n < node_count(); ++n)
+    if (touched[n] || (own_nodes_.first <= n && n < own_nodes_.second)) touched_nodes_.push_back(n);
+}
+
 CutUpdate NodalBody::update_for_cuts(double t) {
+  KERF_CHECK(!partitioned(), "internal: a partitioned nodal body cannot be cut (its ranks' rows would change)");
   CutUpdate update;
   std::vector<Index> rows;
   const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows);
@@ -103,7 +118,7 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
     // share of V_I P(F_I) grad phi_K(x_I) and of the pair terms, scattered into
     // this thread's own force vector.
 #pragma omp for schedule(static)
-    for (Index I = 0; I < N; ++I) {
+    for (Index I = own_nodes_.first; I < own_nodes_.second; ++I) {
       const Index s0 = start[I], s1 = start[I + 1];
       // Plain scalar accumulators: Eigen's fixed matrices here end up on the
       // stack, and the loop then waits on store-to-load forwarding.
@@ -199,6 +214,7 @@ NodalForceTables NodalBody::force_tables() const {
   const ShapeTable& table = domain_.at_nodes();
   NodalForceTables t;
   t.nodes = node_count();
+  std::tie(t.pass_begin, t.pass_end) = own_nodes_;
   t.start = table.neighbours.start.data();
   t.index = table.neighbours.index.data();
   t.slots = static_cast<Index>(table.neighbours.index.size());
@@ -228,7 +244,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
   const ShapeTable& table = domain_.at_nodes();
   double material = 0.0, stab = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : material, stab)
-  for (Index I = 0; I < nodes.size(); ++I) {
+  for (Index I = own_nodes_.first; I < own_nodes_.second; ++I) {
     const Mat3 F = deformation_gradient(table, I, u);
     material += nodes.volume[I] * law_.energy(F);
     if (!stabilized_) continue;
@@ -284,7 +300,8 @@ void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   BlockExtra stabilization;
   if (stabilized_) stabilization = [this](Index I, std::vector<double>& block) { add_stabilization_block(I, block); };
-  if (schedule_.colours.empty()) schedule_ = schedule_points(domain_.at_nodes(), domain_.nodes().positions);
+  if (schedule_.colours.empty())
+    schedule_ = only_points(schedule_points(domain_.at_nodes(), domain_.nodes().positions), own_nodes_);
   assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization);
   if (f) internal_force(u, *f);
 }
@@ -299,8 +316,8 @@ void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
 
 Vector NodalBody::lumped_mass() const {
   const int dim = domain_.dimension();
-  Vector m(dof_count());
-  for (Index I = 0; I < node_count(); ++I)
+  Vector m = Vector::Zero(dof_count());
+  for (Index I = own_nodes_.first; I < own_nodes_.second; ++I)
     for (int i = 0; i < dim; ++i) m[dim * I + i] = density_ * domain_.nodes().volume[I];
   return m;
 }

@@ -8,8 +8,10 @@
 //   E_stab = 1/2 sum_I sum_J k_IJ |e_IJ|^2,  k_IJ = c mu V_I w_IJ / (sum_J w_IJ |x_J - x_I|^2),
 // which vanishes for every affine motion (so patch tests and rigid rotations of
 // any size are untouched) and is quadratic in u.
+#include <utility>
 #include <vector>
 
+#include "core/rank_share.h"
 #include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/nodal_force_kernel.h"
 #include "discretization/meshless/point_integration.h"
@@ -26,12 +28,19 @@ struct StabilizationPairs {
   std::vector<double> stiffness, lever_sum, lever_moment;
 };
 
-class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
+class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public PartitionedAssembly {
  public:
   /// The default c of the stabilisation (meshless.stabilization: true).
   static constexpr double default_stabilization = 0.1;
 
-  NodalBody(const Scene& scene, MeshlessDomain domain);
+  /// With `share` across ranks the body computes this rank's part alone
+  /// (PartitionedAssembly): the terms of an even split of the nodes (each
+  /// node is its own integration point), which are also the rows it owns.
+  NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share = {});
+
+  bool partitioned() const override { return share_.distributed(); }
+  std::pair<Index, Index> owned_nodes() const override { return own_nodes_; }
+  const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
 
   Index element_count() const override { return node_count(); }
 
@@ -68,6 +77,11 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions {
   /// The stabilisation's stiffness on point I's neighbours (scalar per node pair) into `block`.
   void add_stabilization_block(Index I, std::vector<double>& block) const;
 
+  void share_nodes(RankShare share);
+
+  RankShare share_;
+  std::pair<Index, Index> own_nodes_;  // the nodes whose terms this rank computes (all in a serial run)
+  std::vector<Index> touched_nodes_;   // those and their neighbours, sorted
   bool stabilized_;
   StabilizationPairs pairs_;  // empty without the stabilisation
   Scene scene_;               // the loads, integrated again when a growing cut reaches them

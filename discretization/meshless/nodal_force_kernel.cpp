@@ -91,7 +91,7 @@ template <bool Stabilized>
 __attribute__((always_inline)) inline void nodes_pass(const NodalForceTables& t, const MaterialLaw& law,
                                                       const double* u4, double* mine) {
 #pragma omp for schedule(static)
-  for (Index I = 0; I < t.nodes; ++I) node_pass<Stabilized>(t, law, u4, mine, I);
+  for (Index I = t.pass_begin; I < t.pass_end; ++I) node_pass<Stabilized>(t, law, u4, mine, I);
 }
 
 /// The pass over this thread's nodes, compiled for the baseline and for AVX2 + FMA.

@@ -19,6 +19,7 @@ namespace kerf {
 /// Views of a 3D nodal body's tables (nothing owned).
 struct NodalForceTables {
   Index nodes = 0;
+  Index pass_begin = 0, pass_end = 0;    // the nodes whose terms the pass adds (an MPI rank's own)
   const Index* start = nullptr;          // neighbour lists (CSR), N + 1
   const Index* index = nullptr;
   Index slots = 0;

@@ -108,6 +108,14 @@ std::pair<Index, Index> group_points(Index first, Index group_size, Index point_
 
 }  // namespace
 
+PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points) {
+  KERF_CHECK(schedule.group_size == 1, "internal: a range of points of a schedule of groups");
+  for (auto& colour : schedule.colours)
+    for (std::vector<Index>& cube : colour)
+      std::erase_if(cube, [&](Index p) { return p < points.first || p >= points.second; });
+  return schedule;
+}
+
 PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size) {
   KERF_CHECK(group_size >= 1, "internal: a point group of ", group_size, " points");
   const Index P = table.point_count(), groups = (P + group_size - 1) / group_size;

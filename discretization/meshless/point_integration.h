@@ -38,6 +38,9 @@ struct PointSchedule {
   std::vector<std::vector<std::vector<Index>>> colours;  // colour -> cube -> first point of each group, in order
 };
 PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size = 1);
+/// The schedule of the points [points.first, points.second) alone (an MPI
+/// rank's own), in the same order; points one to a group.
+PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points);
 
 /// Adds one point's term into the block of its group: the point's k-th
 /// neighbour is node place[k] of the block's block_nodes.

@@ -1,8 +1,10 @@
 #!/usr/bin/env python3
 """Whether two runs' summary.json give the same probes: every value of a
 probe within `tolerance` relative to the largest magnitude of that probe's
-values in the reference run; and the same critical explicit step (the
-Lanczos and the element bound) when the reference has one.
+values in the reference run; the same critical explicit step (the
+Lanczos and the element bound) when the reference has one; and the same
+number of Newton iterations (a tangent summed wrongly across ranks still
+converges to the answer, but in more iterations).
 usage: same_probes.py REFERENCE OTHER TOLERANCE"""
 import json
 import sys
@@ -45,6 +47,10 @@ def main():
             difference = abs(a - b) / abs(a)
             print(f"{key}: relative difference {difference:.3g}")
             worst = max(worst, difference)
+    newton = (reference["solver"]["newton_iterations"], other["solver"]["newton_iterations"])
+    print(f"newton iterations: {newton[0]} and {newton[1]}")
+    if newton[0] != newton[1]:
+        sys.exit(f"FAILED: {newton[1]} Newton iterations against the reference's {newton[0]}")
     if not worst <= tolerance:
         sys.exit(f"FAILED: relative difference {worst:.3g} above {tolerance:g}")
     print(f"ok: largest relative difference {worst:.3g} <= {tolerance:g}")
