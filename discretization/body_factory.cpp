@@ -30,10 +30,10 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
   return mesh_box(request);
 }
 
-/// Under MPI, a FEM or nodal body computes only its rank's cells or nodes
+/// Under MPI, a body computes only its rank's cells, nodes or Gauss points
 /// where every term of the run can add parts across ranks: not yet with
 /// contact or cuts (issue 18: these still run whole on every rank, only the
-/// linear solve shared), nor EFG.
+/// linear solve shared).
 RankShare rank_share(const Scene& scene) {
   const bool parts_add_up = scene.contact.empty() && scene.cuts.empty();
   return parts_add_up ? process_ranks() : RankShare{};
@@ -67,7 +67,7 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts 
   report.add_stage("shape functions");
   if (scene.discretization.method == Method::nodal)
     return std::make_unique<NodalBody>(scene, std::move(domain), rank_share(scene));
-  return std::make_unique<EfgBody>(scene, std::move(domain));
+  return std::make_unique<EfgBody>(scene, std::move(domain), rank_share(scene));
 }
 
 }  // namespace

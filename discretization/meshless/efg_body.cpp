@@ -47,12 +47,12 @@ PointIntegration make_points(const MeshlessDomain& domain, int order) {
 
 }  // namespace
 
-EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain)
+EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
       nitsche_(scene.discretization.meshless.essential == EssentialMethod::nitsche),
       points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
   const int dim = domain_.dimension();
-  stress_.resize(points_.point_count());
+  stress_.assign(points_.point_count(), Mat3::Zero());
   load_ = Vector::Zero(dof_count());
   const ShapeTable& t = points_.shapes();
   for (Index p = 0; p < points_.point_count(); ++p) {
@@ -63,6 +63,32 @@ EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain)
   }
   domain_.add_boundary_loads(scene, load_);
   build_constraints(scene);
+  share_points(share);
+}
+
+void EfgBody::share_points(RankShare share) {
+  share_ = share;
+  const Index per_cell = points_.schedule().group_size, cells = points_.point_count() / per_cell;
+  const auto [first_cell, end_cell] = even_part(cells, share.rank, share.count);
+  own_points_ = {first_cell * per_cell, end_cell * per_cell};
+  own_nodes_ = even_part(node_count(), share.rank, share.count);
+  own_schedule_ = only_points(points_.schedule(), own_points_);
+  std::vector<char> touched(node_count(), 0);
+  std::fill(touched.begin() + own_nodes_.first, touched.begin() + own_nodes_.second, 1);
+  for (Index p = own_points_.first; p < own_points_.second; ++p)
+    for (Index J : points_.shapes().neighbours.of(p)) touched[J] = 1;
+  for (const WeakConstraint& c : constraints_) {
+    const auto [begin, end] = own_constraint_points(c);
+    for (Index q = begin; q < end; ++q)
+      for (Index J : c.shapes.neighbours.of(q)) touched[J] = 1;
+  }
+  touched_nodes_.clear();
+  for (Index n = 0; n < node_count(); ++n)
+    if (touched[n]) touched_nodes_.push_back(n);
+}
+
+std::pair<Index, Index> EfgBody::own_constraint_points(const WeakConstraint& c) const {
+  return even_part(c.shapes.point_count(), share_.rank, share_.count);
 }
 
 void EfgBody::build_constraints(const Scene& scene) {
@@ -141,15 +167,18 @@ double EfgBody::constraint_point(const WeakConstraint& c, Index q, const Vector&
 double EfgBody::constraint_terms(const Vector& u, Vector* f) const {
   double energy = 0.0;
   std::vector<Mat3> scratch;
-  for (const WeakConstraint& c : constraints_)
-    for (Index q = 0; q < c.shapes.point_count(); ++q) energy += constraint_point(c, q, u, f, nullptr, scratch);
+  for (const WeakConstraint& c : constraints_) {
+    const auto [begin, end] = own_constraint_points(c);
+    for (Index q = begin; q < end; ++q) energy += constraint_point(c, q, u, f, nullptr, scratch);
+  }
   return energy;
 }
 
 void EfgBody::internal_force(const Vector& u, Vector& f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  // Other ranks' points keep a zero stress (set when the body was made): the gather adds this rank's part.
 #pragma omp parallel for schedule(static)
-  for (Index p = 0; p < points_.point_count(); ++p)
+  for (Index p = own_points_.first; p < own_points_.second; ++p)
     stress_[p] = points_.weight(p) * law_.stress(deformation_gradient(points_.shapes(), p, u));
   points_.gather(stress_, f);
   constraint_terms(u, &f);
@@ -159,24 +188,26 @@ double EfgBody::strain_energy(const Vector& u) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   double energy = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : energy)
-  for (Index p = 0; p < points_.point_count(); ++p)
+  for (Index p = own_points_.first; p < own_points_.second; ++p)
     energy += points_.weight(p) * law_.energy(deformation_gradient(points_.shapes(), p, u));
   return energy + constraint_terms(u, nullptr);
 }
 
 void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  assemble_material_blocks(points_.shapes(), points_.schedule(), points_.weights(), law_, u, sink);
+  assemble_material_blocks(points_.shapes(), own_schedule_, points_.weights(), law_, u, sink);
   std::vector<double> block;
   std::vector<Index> dofs;
   std::vector<Mat3> scratch;
-  for (const WeakConstraint& c : constraints_)
-    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+  for (const WeakConstraint& c : constraints_) {
+    const auto [begin, end] = own_constraint_points(c);
+    for (Index q = begin; q < end; ++q) {
       neighbour_dofs(c.shapes, q, dofs);
       block.assign(dofs.size() * dofs.size(), 0.0);
       constraint_point(c, q, u, nullptr, &block, scratch);
       sink(dofs, block);
     }
+  }
   if (f) internal_force(u, *f);
 }
 
@@ -200,7 +231,7 @@ Vector EfgBody::lumped_mass() const {
   const int dim = domain_.dimension();
   Vector m = Vector::Zero(dof_count());
   const ShapeTable& t = points_.shapes();
-  for (Index p = 0; p < points_.point_count(); ++p) {
+  for (Index p = own_points_.first; p < own_points_.second; ++p) {
     auto near = t.neighbours.of(p);
     const double* phi = t.values_of(p);
     for (std::size_t k = 0; k < near.size(); ++k)
@@ -210,7 +241,7 @@ Vector EfgBody::lumped_mass() const {
 }
 
 void EfgBody::consistent_mass(const BlockSink& sink) const {
-  assemble_mass_blocks(points_.shapes(), points_.schedule(), points_.weights(), density_, sink);
+  assemble_mass_blocks(points_.shapes(), own_schedule_, points_.weights(), density_, sink);
 }
 
 Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {

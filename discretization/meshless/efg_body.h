@@ -10,21 +10,31 @@
 // round-off. Its tangent drops the term (u - u_bar) . dA/dF, which vanishes
 // for linear materials (exact tangent) and is small where the constraint
 // holds. `point` selections constrain the nearest node's parameter.
+#include <utility>
 #include <vector>
 
+#include "core/rank_share.h"
 #include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/point_integration.h"
 #include "problem/material.h"
 
 namespace kerf {
 
-class EfgBody final : public MeshlessBody, public WeakConstraints {
+class EfgBody final : public MeshlessBody, public WeakConstraints, public PartitionedAssembly {
  public:
   /// alpha = factor (lambda + 2 mu) / h, h the local node spacing.
   static constexpr double nitsche_factor = 10.0;
   static constexpr double penalty_factor = 1.0e4;
 
-  EfgBody(const Scene& scene, MeshlessDomain domain);
+  /// With `share` across ranks the body computes this rank's part alone
+  /// (PartitionedAssembly): the Gauss points of an even split of the
+  /// locality-ordered background cells and of each constraint's boundary
+  /// points; it owns the rows of an even split of the nodes.
+  EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share = {});
+
+  bool partitioned() const override { return share_.distributed(); }
+  std::pair<Index, Index> owned_nodes() const override { return own_nodes_; }
+  const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
 
   Index element_count() const override { return points_.point_count(); }
   /// The Gauss points of the cells, cell by cell.
@@ -58,9 +68,16 @@ class EfgBody final : public MeshlessBody, public WeakConstraints {
                           std::vector<double>* block, std::vector<Mat3>& T) const;
   double constraint_terms(const Vector& u, Vector* f) const;
   void build_constraints(const Scene& scene);
+  /// This rank's boundary points of `c`: [begin, end).
+  std::pair<Index, Index> own_constraint_points(const WeakConstraint& c) const;
+  void share_points(RankShare share);
 
   bool nitsche_;
   PointIntegration points_;
+  RankShare share_;
+  std::pair<Index, Index> own_points_, own_nodes_;  // all of them in a serial run
+  std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
+  PointSchedule own_schedule_;                      // its points' part of points_.schedule()
   std::vector<WeakConstraint> constraints_;
   mutable std::vector<Mat3> stress_;
 };

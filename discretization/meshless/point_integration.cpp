@@ -109,7 +109,8 @@ std::pair<Index, Index> group_points(Index first, Index group_size, Index point_
 }  // namespace
 
 PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points) {
-  KERF_CHECK(schedule.group_size == 1, "internal: a range of points of a schedule of groups");
+  KERF_CHECK(points.first % schedule.group_size == 0, "internal: points from ", points.first,
+             " split a group of ", schedule.group_size);
   for (auto& colour : schedule.colours)
     for (std::vector<Index>& cube : colour)
       std::erase_if(cube, [&](Index p) { return p < points.first || p >= points.second; });

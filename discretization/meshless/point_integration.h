@@ -39,7 +39,8 @@ struct PointSchedule {
 };
 PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size = 1);
 /// The schedule of the points [points.first, points.second) alone (an MPI
-/// rank's own), in the same order; points one to a group.
+/// rank's own), in the same order: the groups that start in the range (it
+/// must start at a group's start).
 PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points);
 
 /// Adds one point's term into the block of its group: the point's k-th
