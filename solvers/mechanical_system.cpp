@@ -140,8 +140,12 @@ std::vector<DirichletDof> MechanicalSystem::dirichlet(double t) const {
 }
 
 SparseMatrix build_pattern(const MechanicalSystem& mechanics) {
+  // A partial matrix needs its touched rows alone (whole, so that the owned ones preallocate PETSc's).
+  const PartitionedAssembly* part = capability<PartitionedAssembly>(mechanics.body());
+  const bool partial = part && part->partitioned();
   return build_pattern(mechanics.dofs_per_node(), mechanics.dof_count(),
-                       [&](const CouplingVisitor& visit) { mechanics.visit_couplings(visit); });
+                       [&](const CouplingVisitor& visit) { mechanics.visit_couplings(visit); },
+                       partial ? std::span<const Index>(part->touched_nodes()) : std::span<const Index>());
 }
 
 }  // namespace kerf

@@ -41,13 +41,16 @@ std::vector<std::vector<Index>> blocks_of_nodes(const BlockNodes& blocks, Index 
 
 }  // namespace
 
-SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
+SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings,
+                           std::span<const Index> kept_nodes) {
   // Meshless bodies visit each node pair dozens of times (once per shared
   // point): each node's couplings are found once, by marking the nodes of the
   // blocks that hold it, rather than by sorting every visit's pairs.
   const Index nodes = n / dpn;
   const BlockNodes blocks = gather_blocks(dpn, visit_couplings);
   const std::vector<std::vector<Index>> holding = blocks_of_nodes(blocks, nodes);
+  std::vector<char> kept(nodes, kept_nodes.empty() ? 1 : 0);
+  for (Index a : kept_nodes) kept[a] = 1;
   std::vector<std::vector<Index>> adjacent(nodes);
 #pragma omp parallel
   {
@@ -56,6 +59,7 @@ SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const Coup
     for (Index a = 0; a < nodes; ++a) {
       auto& list = adjacent[a];
       list.push_back(a);  // the diagonal is always present
+      if (!kept[a]) continue;
       marked_by[a] = a;
       for (Index b : holding[a])
         for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) {

@@ -2,6 +2,7 @@
 // Global sparse matrices over all dofs (row-major CSR, full symmetric storage),
 // filled through the body's BlockSink, and their restriction to the free dofs.
 #include <Eigen/SparseCore>
+#include <span>
 #include <vector>
 
 #include "discretization/body_capabilities.h"
@@ -12,9 +13,12 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::RowMajor, Index>;
 
 /// The pattern of every block the body will write, values zero; diagonal always present.
 SparseMatrix build_pattern(const DiscreteBody& body);
-/// The same for any n dofs (dofs_per_node each) whose couplings `visit_couplings` names.
+/// The same for any n dofs (dofs_per_node each) whose couplings `visit_couplings`
+/// names; with `kept_nodes` (sorted) only their rows are whole, every other row
+/// holds its diagonal alone (an MPI rank's partial matrix: its touched rows).
 SparseMatrix build_pattern(int dofs_per_node, Index n,
-                           const std::function<void(const CouplingVisitor&)>& visit_couplings);
+                           const std::function<void(const CouplingVisitor&)>& visit_couplings,
+                           std::span<const Index> kept_nodes = {});
 
 /// A sink adding scale * block into `matrix` (whose pattern holds the block's
 /// nonzero entries; entries outside it must be zero and are skipped);

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include <Eigen/Dense>
 
@@ -19,6 +20,14 @@ SparseMatrix line_pattern() {
     const std::vector<std::vector<Index>> blocks = {{0, 1, 2, 3, 4, 5}, {4, 5, 6, 7}, {8, 9, 10, 11}};
     for (const auto& dofs : blocks) visit(dofs);
   });
+}
+
+/// The pattern's node-level structure: (a, b) when some row of node a holds a column of node b.
+std::set<std::pair<Index, Index>> node_structure(const SparseMatrix& m, int dpn) {
+  std::set<std::pair<Index, Index>> pairs;
+  for (Index r = 0; r < m.rows(); ++r)
+    for (SparseMatrix::InnerIterator it(m, r); it; ++it) pairs.insert({r / dpn, static_cast<Index>(it.col()) / dpn});
+  return pairs;
 }
 
 /// A block over `dofs` whose entry (i, j) is 100 dofs[i] + dofs[j].
@@ -42,6 +51,21 @@ TEST(SparseAssembly, PatternHoldsEveryVisitedPairAndTheDiagonalOnly) {
   for (Index r = 0; r < 12; ++r)
     for (Index c = 0; c < 12; ++c) EXPECT_EQ(structure(r, c), coupled(r / 2, c / 2) ? 1 : 0) << r << " " << c;
   EXPECT_EQ(m.norm(), 0.0);  // values start at zero
+}
+
+// An MPI rank's partial pattern: the kept nodes' rows whole, every other row its diagonal.
+TEST(SparseAssembly, PatternOfKeptNodesHoldsTheirRowsWholeAndOnlyTheDiagonalElsewhere) {
+  const SparseMatrix whole = line_pattern();
+  const std::vector<Index> kept = {1, 2};
+  const SparseMatrix part = build_pattern(2, 12, [](const CouplingVisitor& visit) {
+    const std::vector<std::vector<Index>> blocks = {{0, 1, 2, 3, 4, 5}, {4, 5, 6, 7}, {8, 9, 10, 11}};
+    for (const auto& dofs : blocks) visit(dofs);
+  }, kept);
+  std::set<std::pair<Index, Index>> expected;
+  for (const auto& [a, b] : node_structure(whole, 2))
+    if (a == b || a == 1 || a == 2) expected.insert({a, b});
+  EXPECT_EQ(node_structure(part, 2), expected);
+  EXPECT_EQ(part.nonZeros(), 4 * static_cast<Index>(expected.size()));  // 2 x 2 entries a node pair
 }
 
 TEST(SparseAssembly, BlocksLandInPlaceWhateverTheOrderOfTheirDofs) {
