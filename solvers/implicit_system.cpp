@@ -66,8 +66,7 @@ ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOpt
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
-  free_share_ = free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node());
-  solver_->set_row_share(free_share_);
+  solver_->set_row_share(free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node()));
   reuse_factorization_ = !mechanics_.is_linear() && solver_->exact_factor();
   if (needs_mass) {
     has_mass_ = true;
@@ -139,7 +138,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
     return;
   }
   report_.add_stage("stiffness");
-  zero_stiffness();
+  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
   mechanics_.tangent_into(u, stiffness_, &f);
   stiffness_assembled_ = true;
   stiffness_changed_ = true;
@@ -154,14 +153,11 @@ Vector ImplicitSystem::mass_times(const Vector& x) const {
 Vector ImplicitSystem::stiffness_times(const Vector& x) const { return times(stiffness_.valuePtr(), x); }
 
 Vector ImplicitSystem::times(const double* values, const Vector& x) const {
-  const RankSum* sum = mechanics_.rank_sum();
-  if (!sum) {
-    Eigen::Map<const SparseMatrix> A(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
-                                     stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), values);
-    return A * x;
-  }
-  Vector y = rows_times(stiffness_, values, mechanics_.dof_share().touched, x);
-  sum->sum(y);
+  // A partial matrix's pattern holds its touched rows alone (the others a zero diagonal).
+  Eigen::Map<const SparseMatrix> A(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
+                                   stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), values);
+  Vector y = A * x;
+  if (const RankSum* sum = mechanics_.rank_sum()) sum->sum(y);
   return y;
 }
 
@@ -183,26 +179,14 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
   factorize_now(where);
 }
 
-void ImplicitSystem::zero_stiffness() {
-  const RowShare& share = mechanics_.dof_share();
-  if (!share.partial) return std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
-  // A partial matrix is written in its touched rows alone: only those need clearing.
-  const Index* outer = stiffness_.outerIndexPtr();
-  double* k = stiffness_.valuePtr();
-  const std::size_t count = share.touched.size();
-#pragma omp parallel for schedule(static)
-  for (std::size_t i = 0; i < count; ++i)
-    std::fill(k + outer[share.touched[i]], k + outer[share.touched[i] + 1], 0.0);
-}
-
 void ImplicitSystem::combine(double cm, double ck) {
-  // A partial matrix holds values in this rank's touched rows alone: the others are left untouched (zero).
   const RowShare& share = mechanics_.dof_share();
   const Index* outer = stiffness_.outerIndexPtr();
   const double* k = stiffness_.valuePtr();
   double* a = system_.valuePtr();
   const bool consistent = cm != 0.0 && !lumped_;
-  auto combine_row = [&](Index r) {
+#pragma omp parallel for schedule(static)
+  for (Index r = 0; r < stiffness_.rows(); ++r) {
     for (Index p = outer[r]; p < outer[r + 1]; ++p) {
       a[p] = ck * k[p];
       if (consistent) a[p] += cm * mass_values_[p];
@@ -210,17 +194,8 @@ void ImplicitSystem::combine(double cm, double ck) {
     // The lumped mass is whole: a partial matrix takes it on its own rows only.
     if (cm != 0.0 && lumped_ && (!share.partial || (r >= share.owned_begin && r < share.owned_end)))
       a[diagonal_[r]] += cm * lumped_mass_[r];
-  };
-  if (share.partial) {
-    const std::size_t count = share.touched.size();
-#pragma omp parallel for schedule(static)
-    for (std::size_t i = 0; i < count; ++i) combine_row(share.touched[i]);
-    free_.restrict_values(system_, free_share_.touched);
-  } else {
-#pragma omp parallel for schedule(static)
-    for (Index r = 0; r < stiffness_.rows(); ++r) combine_row(r);
-    free_.restrict_values(system_);
   }
+  free_.restrict_values(system_);
 }
 
 void ImplicitSystem::factorize_now(const std::string& where) {

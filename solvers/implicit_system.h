@@ -43,7 +43,6 @@ class ImplicitSystem {
   const MechanicalSystem& mechanics_;
   RunReport& report_;
   FreeDofs free_;
-  RowShare free_share_;            // the ranks' share of the free rows
   SparseMatrix stiffness_;
   SparseMatrix system_;          // c_M M + c_K K, all dofs
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
@@ -63,11 +62,9 @@ class ImplicitSystem {
   std::unique_ptr<LinearSolver> solver_;
 
   /// A x for values of A in K's pattern, whole on every rank (a partial
-  /// matrix's product is taken over its touched rows and summed over the ranks).
+  /// matrix's products are summed over the ranks).
   Vector times(const double* values, const Vector& x) const;
-  /// K's values set to zero before it is assembled again (a partial matrix's touched rows).
-  void zero_stiffness();
-  /// A = c_M M + c_K K on the free dofs (this rank's rows of a partial matrix).
+  /// A = c_M M + c_K K on the free dofs (a partial matrix: this rank's part).
   void combine(double cm, double ck);
   void read_mass();
   void factorize_now(const std::string& where);

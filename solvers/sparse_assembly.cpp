@@ -218,28 +218,4 @@ void FreeDofs::restrict_values(const SparseMatrix& full) {
   for (std::size_t k = 0; k < count; ++k) out[k] = in[source_position_[k]];
 }
 
-void FreeDofs::restrict_values(const SparseMatrix& full, const std::vector<Index>& free_rows) {
-  double* out = restricted_.valuePtr();
-  const double* in = full.valuePtr();
-  const Index* outer = restricted_.outerIndexPtr();
-  const std::size_t count = free_rows.size();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < count; ++k)
-    for (Index p = outer[free_rows[k]]; p < outer[free_rows[k] + 1]; ++p) out[p] = in[source_position_[p]];
-}
-
-Vector rows_times(const SparseMatrix& pattern, const double* values, const std::vector<Index>& rows, const Vector& x) {
-  Vector y = Vector::Zero(pattern.rows());
-  const Index* outer = pattern.outerIndexPtr();
-  const Index* inner = pattern.innerIndexPtr();
-  const std::size_t count = rows.size();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < count; ++k) {
-    double sum = 0.0;
-    for (Index p = outer[rows[k]]; p < outer[rows[k] + 1]; ++p) sum += values[p] * x[inner[p]];
-    y[rows[k]] = sum;
-  }
-  return y;
-}
-
 }  // namespace kerf

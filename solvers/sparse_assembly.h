@@ -31,10 +31,6 @@ CsrView csr_view(SparseMatrix& matrix);
 /// Positions of the diagonal entries in matrix.valuePtr().
 std::vector<Index> diagonal_positions(const SparseMatrix& matrix);
 
-/// y = A x, A's values in `values` (A's pattern), over the listed rows only
-/// (zero elsewhere): a rank's partial matrix holds values in its touched rows alone.
-Vector rows_times(const SparseMatrix& pattern, const double* values, const std::vector<Index>& rows, const Vector& x);
-
 /// The split of dofs into free and constrained, and the restriction A -> A_ff.
 class FreeDofs {
  public:
@@ -51,8 +47,6 @@ class FreeDofs {
   void prepare_matrix(const SparseMatrix& full);
   const SparseMatrix& restricted() const { return restricted_; }
   void restrict_values(const SparseMatrix& full);
-  /// The same for the listed free rows only (a rank's partial matrix holds no others).
-  void restrict_values(const SparseMatrix& full, const std::vector<Index>& free_rows);
 
  private:
   std::vector<Index> free_of_full_;
