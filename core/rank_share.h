@@ -4,6 +4,7 @@
 // line (solvers/petsc_session.h finds it); 0 of 1 otherwise.
 #include <algorithm>
 #include <utility>
+#include <vector>
 
 #include "core/types.h"
 
@@ -29,6 +30,16 @@ inline std::pair<Index, Index> even_part(Index n, int rank, int count) {
   const Index base = n / count, extra = n % count;
   const Index begin = rank * base + std::min<Index>(rank, extra);
   return {begin, begin + base + (rank < extra ? 1 : 0)};
+}
+
+/// A rank's touched nodes: those its own cells or points reach (`reached`,
+/// one mark a node) and its owned range, ascending.
+inline std::vector<Index> touched_node_list(std::vector<char> reached, std::pair<Index, Index> owned) {
+  std::fill(reached.begin() + owned.first, reached.begin() + owned.second, 1);
+  std::vector<Index> nodes;
+  for (Index n = 0; n < static_cast<Index>(reached.size()); ++n)
+    if (reached[n]) nodes.push_back(n);
+  return nodes;
 }
 
 }  // namespace kerf

@@ -114,7 +114,11 @@ std::string VtkSeries::file_name(const std::string& part, std::size_t step, cons
 }
 
 std::string VtkSeries::write_pieces(const BodySnapshot& snapshot, std::size_t step) {
-  auto piece_name = [&](int rank) { return file_name("", step, "_" + std::to_string(rank) + ".vtu"); };
+  auto piece_name = [&](int rank) {
+    char ending[32];
+    std::snprintf(ending, sizeof ending, "_%d.vtu", rank);
+    return file_name("", step, ending);
+  };
   const auto cells = even_part(static_cast<Index>(snapshot.cell_types.size()), ranks_.rank, ranks_.count);
   const BodySnapshot piece = snapshot_piece(snapshot, cells, ranks_.rank);
   write_vtu(piece, directory_ + "/" + piece_name(ranks_.rank));

@@ -100,13 +100,10 @@ void FemBody::share_cells(RankShare share) {
   owned_nodes_ = even_part(mesh_.node_count(), share.rank, share.count);
   schedule_ = schedule_cells(mesh_, omp_get_max_threads(), cell_begin_, cell_end_);
   // Its own nodes (their rows take the whole lumped mass) and its cells'.
-  std::vector<char> touched(mesh_.node_count(), 0);
-  std::fill(touched.begin() + owned_nodes_.first, touched.begin() + owned_nodes_.second, 1);
+  std::vector<char> reached(mesh_.node_count(), 0);
   for (Index c = cell_begin_; c < cell_end_; ++c)
-    for (Index n : mesh_.cell(c)) touched[n] = 1;
-  touched_nodes_.clear();
-  for (Index n = 0; n < mesh_.node_count(); ++n)
-    if (touched[n]) touched_nodes_.push_back(n);
+    for (Index n : mesh_.cell(c)) reached[n] = 1;
+  touched_nodes_ = touched_node_list(std::move(reached), owned_nodes_);
 }
 
 template <int Dim, int Npc>

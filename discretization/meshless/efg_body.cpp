@@ -73,18 +73,15 @@ void EfgBody::share_points(RankShare share) {
   own_points_ = {first_cell * per_cell, end_cell * per_cell};
   own_nodes_ = even_part(node_count(), share.rank, share.count);
   own_schedule_ = only_points(points_.schedule(), own_points_);
-  std::vector<char> touched(node_count(), 0);
-  std::fill(touched.begin() + own_nodes_.first, touched.begin() + own_nodes_.second, 1);
+  std::vector<char> reached(node_count(), 0);
   for (Index p = own_points_.first; p < own_points_.second; ++p)
-    for (Index J : points_.shapes().neighbours.of(p)) touched[J] = 1;
+    for (Index J : points_.shapes().neighbours.of(p)) reached[J] = 1;
   for (const WeakConstraint& c : constraints_) {
     const auto [begin, end] = own_constraint_points(c);
     for (Index q = begin; q < end; ++q)
-      for (Index J : c.shapes.neighbours.of(q)) touched[J] = 1;
+      for (Index J : c.shapes.neighbours.of(q)) reached[J] = 1;
   }
-  touched_nodes_.clear();
-  for (Index n = 0; n < node_count(); ++n)
-    if (touched[n]) touched_nodes_.push_back(n);
+  touched_nodes_ = touched_node_list(std::move(reached), own_nodes_);
 }
 
 std::pair<Index, Index> EfgBody::own_constraint_points(const WeakConstraint& c) const {

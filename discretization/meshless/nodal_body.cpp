@@ -67,12 +67,10 @@ void NodalBody::share_nodes(RankShare share) {
   share_ = share;
   own_nodes_ = even_part(node_count(), share.rank, share.count);
   // Its own nodes and their neighbours: the rows its nodes' terms reach.
-  std::vector<char> touched(node_count(), 0);
+  std::vector<char> reached(node_count(), 0);
   for (Index I = own_nodes_.first; I < own_nodes_.second; ++I)
-    for (Index J : domain_.at_nodes().neighbours.of(I)) touched[J] = 1;
-  touched_nodes_.clear();
-  for (Index n = 0; n < node_count(); ++n)
-    if (touched[n] || (own_nodes_.first <= n && n < own_nodes_.second)) touched_nodes_.push_back(n);
+    for (Index J : domain_.at_nodes().neighbours.of(I)) reached[J] = 1;
+  touched_nodes_ = touched_node_list(std::move(reached), own_nodes_);
 }
 
 CutUpdate NodalBody::update_for_cuts(double t) {
