@@ -11,6 +11,7 @@
 #include "app/run_parts.h"
 #include "app/summary_json.h"
 #include "core/check.h"
+#include "core/peak_memory.h"
 #include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
@@ -19,6 +20,7 @@
 #include "problem/scene_json.h"
 #include "problem/scene_validation.h"
 #include "solvers/petsc_session.h"
+#include "solvers/rank_sum.h"
 
 namespace kerf {
 namespace {
@@ -47,13 +49,27 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, 
   run.mechanics = std::make_unique<MechanicalSystem>(*run.body, scene, report);
   run.probes = std::make_unique<ProbeSet>(scene, *run.mechanics);
   run.stepper = make_stepper(*run.mechanics, scene, report);
+  RankCounts& parallel = report.parallel;
+  parallel.memory.after_body = peak_memory_mb();
   run.stepper->initialize(state);  // timed inside as assembly and factorize
+  parallel.memory.after_initialization = peak_memory_mb();
   report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
                    run.body->mean_neighbors()};
   const RowShare& share = run.mechanics->dof_share();
-  report.parallel = {process_ranks().count, share.partial, share.owned_end - share.owned_begin,
-                     share.partial ? static_cast<Index>(share.touched.size()) : run.mechanics->dof_count()};
+  parallel.ranks = process_ranks().count;
+  parallel.partitioned = share.partial;
+  parallel.owned_rows = share.owned_end - share.owned_begin;
+  parallel.touched_rows = share.partial ? static_cast<Index>(share.touched.size()) : run.mechanics->dof_count();
   return run;
+}
+
+/// Every rank's memory marks, in rank order (collective).
+std::vector<MemoryMarks> memory_of_every_rank(const MemoryMarks& mine, const RankShare& ranks) {
+  std::vector<MemoryMarks> marks;
+  for (const std::vector<double>& v :
+       values_of_every_rank({mine.after_body, mine.after_initialization, mine.at_end}, ranks))
+    marks.push_back({v[0], v[1], v[2]});
+  return marks;
 }
 
 /// The step loop: each step, then the cuts followed, then the output it is due.
@@ -122,6 +138,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     const double loop_start = now_seconds();
     step(scene, cuts, run, state, observer, report, summary, options.quiet);
     report.solve_seconds = now_seconds() - loop_start;
+    report.parallel.memory.at_end = peak_memory_mb();
+    report.parallel.memory_by_rank = memory_of_every_rank(report.parallel.memory, options.ranks);
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
     write_report(report, summary);
     summary["status"] = "ok";

@@ -1,8 +1,8 @@
 #include "app/summary_json.h"
 
-#include <sys/resource.h>
-
 #include <algorithm>
+
+#include "core/peak_memory.h"
 
 namespace kerf {
 namespace {
@@ -43,13 +43,6 @@ json solver_counters(const RunReport& report) {
   return out;
 }
 
-/// This process's largest resident set so far (MB).
-double peak_memory_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // Linux: kilobytes
-}
-
 }  // namespace
 
 void write_report(const RunReport& report, json& summary) {
@@ -62,6 +55,15 @@ void write_report(const RunReport& report, json& summary) {
                          {"rank0_owned_rows", r.owned_rows},
                          {"rank0_touched_rows", r.touched_rows},
                          {"rank0_peak_memory_mb", peak_memory_mb()}};
+  if (!r.memory_by_rank.empty()) {
+    json& marks = summary["parallel"]["peak_memory_mb_by_rank"];
+    marks = {{"after_body", json::array()}, {"after_initialization", json::array()}, {"at_end", json::array()}};
+    for (const MemoryMarks& m : r.memory_by_rank) {
+      marks["after_body"].push_back(m.after_body);
+      marks["after_initialization"].push_back(m.after_initialization);
+      marks["at_end"].push_back(m.at_end);
+    }
+  }
   json phases = json::object();
   for (std::size_t p = 0; p < phase_names.size(); ++p)
     phases[std::string(phase_names[p]) + "_s"] = report.phases.seconds(static_cast<Phase>(p));

@@ -22,12 +22,21 @@ struct RunCounts {
   double neighbors_mean = 0.0;  // other nodes a node is coupled to
 };
 
+/// A rank's peak resident memory (MB) at the run's milestones.
+struct MemoryMarks {
+  double after_body = 0.0;            // mesh or nodes, shape functions, the matrix pattern
+  double after_initialization = 0.0;  // and the first assembly, factorization or preconditioner
+  double at_end = 0.0;                // and the step loop, output included
+};
+
 /// How the MPI ranks shared the run (summary "parallel"), as rank 0 saw it.
 struct RankCounts {
   int ranks = 1;
   bool partitioned = false;  // each rank assembled its own cells (else every rank the whole)
   Index owned_rows = 0;      // rank 0's rows
   Index touched_rows = 0;    // rows rank 0 computes values in: its own and its ghosts'
+  MemoryMarks memory;                       // this rank's (the summary: rank 0's)
+  std::vector<MemoryMarks> memory_by_rank;  // every rank's, gathered when the run ended well
 };
 
 /// The solvers' work over the run (summary "solver"; zero when a run had none).

@@ -56,8 +56,6 @@ ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOpt
   ScopedTimer timer(report_.phases, Phase::setup);
   KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
   stiffness_ = build_pattern(mechanics_);
-  system_ = stiffness_;
-  diagonal_ = diagonal_positions(stiffness_);
   free_.prepare_matrix(stiffness_);
   LinearSolverOptions linear;
   linear.kind = options.linear_solver;
@@ -152,6 +150,14 @@ Vector ImplicitSystem::mass_times(const Vector& x) const {
 
 Vector ImplicitSystem::stiffness_times(const Vector& x) const { return times(stiffness_.valuePtr(), x); }
 
+Vector ImplicitSystem::system_times(const Vector& x) const {
+  const double cm = last_mass_coefficient_, ck = last_stiffness_coefficient_;
+  KERF_CHECK(ck >= 0.0, "internal: A x before A was formed");
+  Vector y = ck * stiffness_times(x);
+  if (has_mass_ && cm != 0.0) y += cm * mass_times(x);
+  return y;
+}
+
 Vector ImplicitSystem::times(const double* values, const Vector& x) const {
   // A partial matrix's pattern holds its touched rows alone (the others a zero diagonal).
   Eigen::Map<const SparseMatrix> A(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
@@ -180,22 +186,23 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
 }
 
 void ImplicitSystem::combine(double cm, double ck) {
-  const RowShare& share = mechanics_.dof_share();
-  const Index* outer = stiffness_.outerIndexPtr();
+  // Straight into A_ff (no whole-dof copy of A: the largest array a run holds).
   const double* k = stiffness_.valuePtr();
-  double* a = system_.valuePtr();
-  const bool consistent = cm != 0.0 && !lumped_;
-#pragma omp parallel for schedule(static)
-  for (Index r = 0; r < stiffness_.rows(); ++r) {
-    for (Index p = outer[r]; p < outer[r + 1]; ++p) {
-      a[p] = ck * k[p];
-      if (consistent) a[p] += cm * mass_values_[p];
-    }
-    // The lumped mass is whole: a partial matrix takes it on its own rows only.
-    if (cm != 0.0 && lumped_ && (!share.partial || (r >= share.owned_begin && r < share.owned_end)))
-      a[diagonal_[r]] += cm * lumped_mass_[r];
+  const double* m = mass_values_.data();
+  if (cm != 0.0 && !lumped_)
+    free_.restrict_values_with([=](Index p) { return ck * k[p] + cm * m[p]; });
+  else
+    free_.restrict_values_with([=](Index p) { return ck * k[p]; });
+  if (cm == 0.0 || !lumped_) return;
+  // The lumped mass is whole: a partial matrix takes it on its own rows only.
+  const RowShare& share = mechanics_.dof_share();
+  const std::vector<Index>& full_row = free_.free_dofs();
+  const std::vector<Index>& diagonal = free_.restricted_diagonal();
+  double* a = free_.restricted_values();
+  for (std::size_t i = 0; i < full_row.size(); ++i) {
+    const Index r = full_row[i];
+    if (!share.partial || (r >= share.owned_begin && r < share.owned_end)) a[diagonal[i]] += cm * lumped_mass_[r];
   }
-  free_.restrict_values(system_);
 }
 
 void ImplicitSystem::factorize_now(const std::string& where) {

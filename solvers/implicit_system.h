@@ -29,7 +29,7 @@ class ImplicitSystem {
   Vector mass_times(const Vector& x) const;
   Vector stiffness_times(const Vector& x) const;
   /// A x over all dofs, with A as last formed by update_matrix.
-  Vector system_times(const Vector& x) const { return times(system_.valuePtr(), x); }
+  Vector system_times(const Vector& x) const;
 
   /// Forms A = c_M M + c_K K on the free dofs; factorizes it unless the last
   /// factorization can precondition it (same coefficients, direct backend).
@@ -44,11 +44,9 @@ class ImplicitSystem {
   RunReport& report_;
   FreeDofs free_;
   SparseMatrix stiffness_;
-  SparseMatrix system_;          // c_M M + c_K K, all dofs
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
   std::vector<double> linear_values_;  // a linear body's own stiffness (with contact) in the pattern of K
   Vector lumped_mass_;
-  std::vector<Index> diagonal_;
   bool has_mass_ = false;
   bool lumped_ = false;
   bool stiffness_assembled_ = false;

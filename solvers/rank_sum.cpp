@@ -77,4 +77,17 @@ double RankSum::smallest(double x) const {
   return least;
 }
 
+std::vector<std::vector<double>> values_of_every_rank(const std::vector<double>& mine, const RankShare& ranks) {
+  if (!ranks.distributed()) return {mine};
+  const Index k = static_cast<Index>(mine.size()), first = ranks.rank * k;
+  std::vector<Index> entries(k);
+  for (Index i = 0; i < k; ++i) entries[i] = first + i;
+  Vector all = Vector::Zero(k * ranks.count);
+  all.segment(first, k) = Eigen::Map<const Vector>(mine.data(), k);
+  RankSum(all.size(), first, first + k, entries).sum(all);
+  std::vector<std::vector<double>> values(ranks.count);
+  for (int r = 0; r < ranks.count; ++r) values[r].assign(all.data() + r * k, all.data() + (r + 1) * k);
+  return values;
+}
+
 }  // namespace kerf

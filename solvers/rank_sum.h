@@ -7,6 +7,7 @@
 #include <memory>
 #include <vector>
 
+#include "core/rank_share.h"
 #include "core/types.h"
 
 namespace kerf {
@@ -31,5 +32,9 @@ class RankSum {
   struct Petsc;  // PETSc's objects and the gathered entries (reused by every call)
   std::unique_ptr<Petsc> petsc_;
 };
+
+/// Every rank's `mine` (the same length on each), in rank order. Collective:
+/// every rank must call it.
+std::vector<std::vector<double>> values_of_every_rank(const std::vector<double>& mine, const RankShare& ranks);
 
 }  // namespace kerf

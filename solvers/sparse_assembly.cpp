@@ -208,14 +208,7 @@ void FreeDofs::prepare_matrix(const SparseMatrix& full) {
     for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
       if (free_of_full_[full.innerIndexPtr()[p]] >= 0) source_position_.push_back(p);
   }
-}
-
-void FreeDofs::restrict_values(const SparseMatrix& full) {
-  double* out = restricted_.valuePtr();
-  const double* in = full.valuePtr();
-  const std::size_t count = source_position_.size();
-#pragma omp parallel for schedule(static)
-  for (std::size_t k = 0; k < count; ++k) out[k] = in[source_position_[k]];
+  restricted_diagonal_ = diagonal_positions(restricted_);
 }
 
 }  // namespace kerf

@@ -46,13 +46,30 @@ class FreeDofs {
   /// Builds the free-free pattern of `full` once; `restrict_values` then copies values.
   void prepare_matrix(const SparseMatrix& full);
   const SparseMatrix& restricted() const { return restricted_; }
-  void restrict_values(const SparseMatrix& full);
+  void restrict_values(const SparseMatrix& full) {
+    const double* in = full.valuePtr();
+    restrict_values_with([in](Index p) { return in[p]; });
+  }
+  /// Each restricted value as value_of(p), p its position in the full
+  /// matrix's values: a combination of full matrices without forming it.
+  template <class ValueOf>
+  void restrict_values_with(const ValueOf& value_of) {
+    double* out = restricted_.valuePtr();
+    const Index* source = source_position_.data();
+    const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(source_position_.size());
+#pragma omp parallel for schedule(static)
+    for (std::ptrdiff_t k = 0; k < count; ++k) out[k] = value_of(source[k]);
+  }
+  double* restricted_values() { return restricted_.valuePtr(); }
+  /// Positions of the restricted matrix's diagonal entries, by free row.
+  const std::vector<Index>& restricted_diagonal() const { return restricted_diagonal_; }
 
  private:
   std::vector<Index> free_of_full_;
   std::vector<Index> full_of_free_;
   SparseMatrix restricted_;
   std::vector<Index> source_position_;  // for each restricted value, its position in the full matrix
+  std::vector<Index> restricted_diagonal_;
 };
 
 }  // namespace kerf

@@ -4,7 +4,8 @@ probe within `tolerance` relative to the largest magnitude of that probe's
 values in the reference run; the same critical explicit step (the
 Lanczos and the element bound) when the reference has one; and the same
 number of Newton iterations (a tangent summed wrongly across ranks still
-converges to the answer, but in more iterations).
+converges to the answer, but in more iterations); and each run's memory
+marks: one per rank, positive and growing from mark to mark.
 usage: same_probes.py REFERENCE OTHER TOLERANCE"""
 import json
 import sys
@@ -21,6 +22,22 @@ def leaves(value):
         yield float(value)
 
 
+def check_memory_marks(parallel, path):
+    marks = parallel.get("peak_memory_mb_by_rank")
+    if marks is None:
+        sys.exit(f"{path}: no peak_memory_mb_by_rank")
+    phases = ("after_body", "after_initialization", "at_end")
+    for phase in phases:
+        if len(marks[phase]) != parallel["ranks"] or not all(m > 0 for m in marks[phase]):
+            sys.exit(f"{path}: {phase} memory {marks[phase]}: expected one positive figure a rank")
+    for rank in range(parallel["ranks"]):
+        figures = [marks[phase][rank] for phase in phases]
+        if figures != sorted(figures):
+            sys.exit(f"{path}: rank {rank}'s peak memory falls from mark to mark: {figures}")
+    if marks["at_end"][0] > parallel["rank0_peak_memory_mb"]:
+        sys.exit(f"{path}: rank 0's last mark {marks['at_end'][0]} above its peak {parallel['rank0_peak_memory_mb']}")
+
+
 def main():
     reference_path, other_path, tolerance = sys.argv[1], sys.argv[2], float(sys.argv[3])
     reference = json.load(open(reference_path))
@@ -28,6 +45,8 @@ def main():
     for run, path in ((reference, reference_path), (other, other_path)):
         if run.get("status") != "ok":
             sys.exit(f"{path}: status {run.get('status')}: {run.get('error', '')}")
+    for run, path in ((reference, reference_path), (other, other_path)):
+        check_memory_marks(run["parallel"], path)
     if reference["counts"] != other["counts"]:
         sys.exit(f"counts differ: {reference['counts']} against {other['counts']}")
     worst = 0.0
