@@ -77,6 +77,12 @@ std::string explicit_cube(double size, int steps) {
 
 const char* const phases[] = {"setup", "assembly", "factorize", "solve", "output"};
 
+double largest(const Json& figures) {
+  double most = 0.0;
+  for (const Json& f : figures) most = std::max(most, f.get<double>());
+  return most;
+}
+
 /// One point's row: its figures from the run's summary.
 Json point_of(const Problem& problem, int ranks, int threads, const Json& summary) {
   Json point = {{"problem", problem.label}, {"ranks", ranks}, {"threads", threads}};
@@ -93,6 +99,9 @@ Json point_of(const Problem& problem, int ranks, int threads, const Json& summar
                 {"partitioned", summary["parallel"]["partitioned"]},
                 {"rank0_touched_rows", summary["parallel"]["rank0_touched_rows"]},
                 {"rank0_peak_memory_mb", summary["parallel"]["rank0_peak_memory_mb"]},
+                {"largest_rank_peak_memory_mb", largest(summary["parallel"]["peak_memory_mb_by_rank"]["at_end"])},
+                {"largest_rank_memory_after_body_mb",
+                 largest(summary["parallel"]["peak_memory_mb_by_rank"]["after_body"])},
                 {"linear_iterations", summary["solver"]["linear_iterations"]},
                 {"probe_z_m", summary["probes"]["probe"]["displacement"][2]}});
   return point;
@@ -162,7 +171,9 @@ void scaling_study(const StudyOptions& options) {
   // 2. Run each.
   std::vector<std::string> columns{"problem", "ranks", "threads", "dofs", "wall_s", "loop_s"};
   for (const char* phase : phases) columns.push_back(std::string(phase) + "_s");
-  for (const char* c : {"rank0_peak_memory_mb", "linear_iterations", "probe_z_m", "status"}) columns.push_back(c);
+  for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
+                        "linear_iterations", "probe_z_m", "status"})
+    columns.push_back(c);
   CsvTable table(runner.out_dir() + "/scaling.csv", columns);
   Json points = Json::array();
   for (const Problem& problem : problems)
@@ -176,7 +187,9 @@ void scaling_study(const StudyOptions& options) {
       std::vector<Json> row{problem.label, launch.ranks, launch.threads, point.value("dofs", Json()),
                             point.value("wall_s", Json()), point.value("loop_s", Json())};
       for (const char* phase : phases) row.push_back(point.value(std::string(phase) + "_s", Json()));
-      for (const char* c : {"rank0_peak_memory_mb", "linear_iterations", "probe_z_m"}) row.push_back(point.value(c, Json()));
+      for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
+                            "linear_iterations", "probe_z_m"})
+        row.push_back(point.value(c, Json()));
       row.push_back(point["status"] == "ok" ? "ok" : "error");
       table.row(row);
       points.push_back(point);
