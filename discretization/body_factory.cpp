@@ -31,11 +31,11 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 }
 
 /// Under MPI, a body computes only its rank's cells, nodes or Gauss points
-/// where every term of the run can add parts across ranks: not yet with
-/// contact or cuts (issue 18: these still run whole on every rank, only the
-/// linear solve shared).
+/// where every term of the run can add parts across ranks (contact does:
+/// its points are split too): not yet with cuts (issue 18: these still run
+/// whole on every rank, only the linear solve shared).
 RankShare rank_share(const Scene& scene) {
-  const bool parts_add_up = scene.contact.empty() && scene.cuts.empty();
+  const bool parts_add_up = scene.cuts.empty();
   return parts_add_up ? process_ranks() : RankShare{};
 }
 

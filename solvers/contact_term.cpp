@@ -39,8 +39,9 @@ double hertz_depth(int dim, double force, double radius, double e_star) {
 
 }  // namespace
 
-ContactTerm::ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node)
-    : first_dof_(first_dof), dim_(dofs_per_node) {
+ContactTerm::ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node,
+                         RankShare ranks)
+    : first_dof_(first_dof), dim_(dofs_per_node), ranks_(ranks) {
   static_ = scene.solve.analysis == Analysis::static_analysis;
   explicit_ = !scene.solve.solves_linear_systems();
   for (const ContactSphere& c : scene.contact) spheres_.push_back(place(c, surface, scene.material, scene.solve.dt));
@@ -126,6 +127,18 @@ void ContactTerm::visit_couplings(const CouplingVisitor& visit) const {
     }
 }
 
+std::vector<Index> ContactTerm::own_point_nodes() const {
+  std::vector<Index> nodes;
+  for (const Sphere& s : spheres_) {
+    const auto [begin, end] = own_points(s);
+    for (std::size_t q = begin; q < end; ++q)
+      nodes.insert(nodes.end(), s.points[q].interpolation.nodes.begin(), s.points[q].interpolation.nodes.end());
+  }
+  std::sort(nodes.begin(), nodes.end());
+  nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+  return nodes;
+}
+
 void ContactTerm::add(const Vector& u, Vector& f, const BlockSink* sink) const {
   std::vector<Index>& dofs = dofs_;
   std::vector<double>& beta = beta_;
@@ -133,7 +146,8 @@ void ContactTerm::add(const Vector& u, Vector& f, const BlockSink* sink) const {
   for (std::size_t i = 0; i < spheres_.size(); ++i) {
     const Sphere& s = spheres_[i];
     const Vec3 centre = s.center + sphere_displacement(i, u);
-    for (std::size_t q = 0; q < s.points.size(); ++q) {
+    const auto [first, end] = own_points(s);
+    for (std::size_t q = first; q < end; ++q) {
       const PointContact c = evaluate(s, q, centre, u);
       if (!c.active) continue;
       const SurfacePoint& p = s.points[q];
@@ -177,13 +191,18 @@ bool ContactTerm::augment(const Vector& u, double load) {
     const Vec3 travel = sphere_displacement(i, u);
     const Vec3 centre = s.center + travel;
     double push = 0.0;  // N: the force along the sphere's direction
-    for (std::size_t q = 0; q < s.points.size(); ++q) {
+    bool penetrates = false;
+    multipliers[i] = s.multiplier;  // another rank's points keep theirs (unused here)
+    const auto [first, end] = own_points(s);
+    for (std::size_t q = first; q < end; ++q) {
       const PointContact c = evaluate(s, q, centre, u);
-      multipliers[i].push_back(std::max(0.0, c.traction));
+      multipliers[i][q] = std::max(0.0, c.traction);
       if (c.active) push += s.points[q].weight * c.traction * c.normal.dot(s.direction);
       if (c.penetration > std::max(penetration_per_size * s.points[q].size, penetration_per_travel * travel.norm()))
-        violated = true;
+        penetrates = true;
     }
+    push = total(push);
+    if (total(penetrates ? 1.0 : 0.0) > 0.0) violated = true;
     if (!s.force) continue;
     const double target = load * s.force->norm();
     if (std::abs(push - target) <= force_tolerance * target) continue;
@@ -217,10 +236,12 @@ ContactReading ContactTerm::reading(Index sphere, const Vector& u) const {
   reading.displacement = sphere_displacement(sphere, u);
   const Vec3 centre = s.center + reading.displacement;
   reading.indentation = s.radius - distance_to_facets(centre, s.facets);
-  for (std::size_t q = 0; q < s.points.size(); ++q) {
+  const auto [first, end] = own_points(s);
+  for (std::size_t q = first; q < end; ++q) {
     const PointContact c = evaluate(s, q, centre, u);
     if (c.active) reading.force += s.points[q].weight * c.traction * c.normal;
   }
+  for (int k = 0; k < 3; ++k) reading.force[k] = total(reading.force[k]);
   return reading;
 }
 
@@ -229,6 +250,7 @@ void ContactTerm::fill_lumped_mass(Vector& lumped) const {
 }
 
 void ContactTerm::consistent_mass(const BlockSink& sink) const {
+  if (ranks_.rank + 1 != ranks_.count) return;  // the sphere's rows are the last rank's: its mass once
   std::vector<Index> dofs(dim_);
   std::vector<double> block(dim_ * dim_);
   for (std::size_t i = 0; i < spheres_.size(); ++i) {

@@ -22,11 +22,19 @@
 // every step pumped energy into explicit runs): k_q = 100 E* / size_q
 // implicit, 10 E* / size_q explicit, which leaves a penetration of about
 // p size / k.
+//
+// On a partitioned body each rank evaluates an even share of each sphere's
+// points (forces and tangent blocks into its partial vectors and matrices,
+// added by PETSc); the sphere's force and the augmentation's decisions are
+// sums over the ranks, so every rank takes the same steps. The sphere's
+// rows belong to the last rank, which alone adds its mass.
 #include <optional>
 #include <vector>
 
+#include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
 #include "problem/scene.h"
+#include "solvers/rank_sum.h"
 
 namespace kerf {
 
@@ -42,7 +50,15 @@ class ContactTerm {
   /// The scene's spheres against the body's surface; their dofs start at
   /// `first_dof` (the body's dof count). Throws, naming the sphere's scene
   /// line, when a sphere cannot reach the body or starts inside it.
-  ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node);
+  /// Split over `ranks` (a partitioned body), each rank evaluates an even
+  /// share of each sphere's points; set_rank_sum then adds their forces.
+  ContactTerm(const Scene& scene, const SurfaceSampling& surface, Index first_dof, int dofs_per_node,
+              RankShare ranks = {});
+  /// Adds the ranks' contact forces in augment() and reading() (collective
+  /// calls then: every rank makes them together).
+  void set_rank_sum(const RankSum* sum) { rank_sum_ = sum; }
+  /// The body nodes this rank's points reach, ascending.
+  std::vector<Index> own_point_nodes() const;
 
   Index sphere_count() const { return static_cast<Index>(spheres_.size()); }
   /// The spheres' dofs: dofs_per_node each, after the body's.
@@ -101,9 +117,18 @@ class ContactTerm {
   /// The secant step of a force-driven sphere's depth towards its force.
   void step_depth(Sphere& s, double push, double target, double load) const;
 
+  /// This rank's points of sphere s: [first, second).
+  std::pair<std::size_t, std::size_t> own_points(const Sphere& s) const {
+    return even_part(static_cast<Index>(s.points.size()), ranks_.rank, ranks_.count);
+  }
+  /// x added over the ranks (x itself when not split).
+  double total(double x) const { return rank_sum_ ? rank_sum_->sum(x) : x; }
+
   std::vector<Sphere> spheres_;
   Index first_dof_;
   int dim_;
+  RankShare ranks_;
+  const RankSum* rank_sum_ = nullptr;
   bool explicit_ = false;
   bool static_ = false;  // a static run: the force scales with the load factor
   mutable std::vector<Index> dofs_;           // add()'s scratch: one point's dofs,

@@ -110,13 +110,16 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
     Eigen::Map<const SparseMatrix> K(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
                                      stiffness_.outerIndexPtr(), stiffness_.innerIndexPtr(), linear_values_.data());
     f = K * u;
+    const RankSum* parts = mechanics_.rank_sum();  // a partitioned rank's K u and terms are its part
     if (!with_tangent) {
       mechanics_.add_terms(u, f, nullptr);
+      if (parts) parts->sum(f);
       return;
     }
     std::copy(linear_values_.begin(), linear_values_.end(), stiffness_.valuePtr());
     const BlockSink sink = add_into(stiffness_);
     mechanics_.add_terms(u, f, &sink);
+    if (parts) parts->sum(f);
     stiffness_assembled_ = true;
     stiffness_changed_ = true;
     return;

@@ -1,5 +1,8 @@
 #include "solvers/mechanical_system.h"
 
+#include <algorithm>
+#include <iterator>
+
 #include "core/check.h"
 #include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
@@ -13,7 +16,9 @@ MechanicalSystem::MechanicalSystem(const DiscreteBody& body, const Scene& scene,
     const SurfaceSampling* surface = capability<SurfaceSampling>(body);
     KERF_CHECK(surface, scene.contact.front().where.describe(),
                ": this discretization has no surface samples, so nothing can touch it");
-    contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node());
+    const PartitionedAssembly* part = capability<PartitionedAssembly>(body);
+    const RankShare points = part && part->partitioned() ? process_ranks() : RankShare{};
+    contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node(), points);
     report.add_stage("contact");
   }
   share_rows();
@@ -24,13 +29,24 @@ void MechanicalSystem::share_rows() {
   const int dim = dofs_per_node();
   const PartitionedAssembly* part = capability<PartitionedAssembly>(body_);
   if (part && part->partitioned()) {
-    KERF_CHECK(!contact_, "internal: contact with a partitioned body");
+    // Rows: the body's own nodes; the spheres' (after the body's) the last rank's.
     share_.owned_begin = dim * part->owned_nodes().first;
-    share_.owned_end = dim * part->owned_nodes().second;
-    for (Index n : part->touched_nodes())
+    share_.owned_end = ranks.rank + 1 == ranks.count ? dof_count() : dim * part->owned_nodes().second;
+    kept_nodes_ = part->touched_nodes();
+    if (contact_) {
+      // This rank's contact points reach their nodes and every sphere.
+      std::vector<Index> reached = contact_->own_point_nodes();
+      for (Index i = 0; i < contact_->sphere_count(); ++i) reached.push_back(body_.node_count() + i);
+      std::vector<Index> merged;
+      std::set_union(kept_nodes_.begin(), kept_nodes_.end(), reached.begin(), reached.end(),
+                     std::back_inserter(merged));
+      kept_nodes_ = std::move(merged);
+    }
+    for (Index n : kept_nodes_)
       for (int i = 0; i < dim; ++i) share_.touched.push_back(dim * n + i);
     share_.partial = true;
     rank_sum_ = std::make_unique<RankSum>(dof_count(), share_.owned_begin, share_.owned_end, share_.touched);
+    if (contact_) contact_->set_rank_sum(rank_sum_.get());
     return;
   }
   // Every rank holds the whole; rows split by nodes, the terms' dofs to the last rank.
@@ -62,16 +78,16 @@ double MechanicalSystem::strain_energy(const Vector& u) const {
 }
 
 void MechanicalSystem::internal_force(const Vector& u, Vector& f) const {
-  if (rank_sum_) {
+  if (!contact_) {
     body_.internal_force(u, f);
-    return rank_sum_->sum(f);
+  } else {
+    body_.internal_force(body_part(u, body_u_), body_f_);
+    f.resize(dof_count());
+    f.head(body_dofs_) = body_f_;
+    f.tail(dof_count() - body_dofs_).setZero();
+    contact_->add(u, f, nullptr);
   }
-  if (!contact_) return body_.internal_force(u, f);
-  body_.internal_force(body_part(u, body_u_), body_f_);
-  f.resize(dof_count());
-  f.head(body_dofs_) = body_f_;
-  f.tail(dof_count() - body_dofs_).setZero();
-  contact_->add(u, f, nullptr);
+  if (rank_sum_) rank_sum_->sum(f);
 }
 
 void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
@@ -107,15 +123,10 @@ void MechanicalSystem::add_terms(const Vector& u, Vector& f, const BlockSink* si
 }
 
 Vector MechanicalSystem::lumped_mass() const {
-  if (rank_sum_) {
-    Vector m = body_.lumped_mass();
-    rank_sum_->sum(m);
-    return m;
-  }
-  if (!contact_) return body_.lumped_mass();
-  Vector m(dof_count());
+  Vector m = Vector::Zero(dof_count());
   m.head(body_dofs_) = body_.lumped_mass();
-  contact_->fill_lumped_mass(m);
+  if (rank_sum_) rank_sum_->sum(m);  // the spheres' masses are whole on every rank: after the sum
+  if (contact_) contact_->fill_lumped_mass(m);
   return m;
 }
 
@@ -141,11 +152,10 @@ std::vector<DirichletDof> MechanicalSystem::dirichlet(double t) const {
 
 SparseMatrix build_pattern(const MechanicalSystem& mechanics) {
   // A partial matrix needs its touched rows alone (whole, so that the owned ones preallocate PETSc's).
-  const PartitionedAssembly* part = capability<PartitionedAssembly>(mechanics.body());
-  const bool partial = part && part->partitioned();
+  const bool partial = mechanics.dof_share().partial;
   return build_pattern(mechanics.dofs_per_node(), mechanics.dof_count(),
                        [&](const CouplingVisitor& visit) { mechanics.visit_couplings(visit); },
-                       partial ? std::span<const Index>(part->touched_nodes()) : std::span<const Index>());
+                       partial ? std::span<const Index>(mechanics.kept_nodes()) : std::span<const Index>());
 }
 
 }  // namespace kerf

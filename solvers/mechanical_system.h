@@ -42,6 +42,9 @@ class MechanicalSystem {
   /// Adds the ranks' parts of a vector computed from partial matrices (as
   /// K u); null unless the body is partitioned.
   const RankSum* rank_sum() const { return rank_sum_.get(); }
+  /// A partitioned rank's touched nodes (its cells' and its contact points',
+  /// each sphere counted as the node after the body's): the rows of its partial matrices.
+  const std::vector<Index>& kept_nodes() const { return kept_nodes_; }
 
   void visit_couplings(const CouplingVisitor& visit) const;
   /// f_int(u) of the body and the terms (N). Not reentrant (kept buffers).
@@ -81,6 +84,7 @@ class MechanicalSystem {
   std::unique_ptr<ContactTerm> contact_;
   RowShare share_;
   std::unique_ptr<RankSum> rank_sum_;
+  std::vector<Index> kept_nodes_;
   mutable Vector body_u_, body_f_;  // buffers of the calls made every step (internal and external force)
 };
 
