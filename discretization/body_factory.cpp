@@ -31,12 +31,12 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 }
 
 /// Under MPI, a body computes only its rank's cells, nodes or Gauss points
-/// where every term of the run can add parts across ranks (contact does:
-/// its points are split too): not yet with cuts (issue 18: these still run
-/// whole on every rank, only the linear solve shared).
-RankShare rank_share(const Scene& scene) {
-  const bool parts_add_up = scene.cuts.empty();
-  return parts_add_up ? process_ranks() : RankShare{};
+/// (contact splits its points too; meshless cuts change shape functions, not
+/// the rows). Not a FEM body whose cut grows: each growth meshes it anew, so
+/// it runs whole on every rank, only the linear solve shared.
+RankShare rank_share(const Scene& scene, const CutTimeline& cuts) {
+  const bool remeshed = scene.discretization.method == Method::fem && cuts.grows();
+  return remeshed ? RankShare{} : process_ranks();
 }
 
 int fem_order(const Scene& scene) { return element_kind(scene.discretization.fem.element).order; }
@@ -63,11 +63,11 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts 
                                 : lattice_nodes(scene.dimension, *scene.box, options.spacing,
                                                 scene.discretization.refine, options.support);
   report.add_stage("nodes");
+  const RankShare share = rank_share(scene, *cuts);
   MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
   report.add_stage("shape functions");
-  if (scene.discretization.method == Method::nodal)
-    return std::make_unique<NodalBody>(scene, std::move(domain), rank_share(scene));
-  return std::make_unique<EfgBody>(scene, std::move(domain), rank_share(scene));
+  if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain), share);
+  return std::make_unique<EfgBody>(scene, std::move(domain), share);
 }
 
 }  // namespace
@@ -87,7 +87,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
-  return std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene));
+  return std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene, *cuts));
 }
 
 }  // namespace kerf

@@ -81,6 +81,8 @@ class CentralDifferenceStepper final : public Stepper {
     // assembly): the run keeps dt, and a growing instability stops it.
     mass_ = mechanics_.lumped_mass();
     inverse_mass_ = mass_.cwiseInverse();
+    // A remeshed body comes with a new stepper, which has read no load yet.
+    mechanics_.external_force(s.t, f_ext_);
     if (beta_ != 0.0) {
       damped_u_ = s.u + beta_ * s.v;
       mechanics_.internal_force(damped_u_, f_int_);

@@ -1,12 +1,13 @@
 // The .pvtu a run across ranks wrote against the .vtu of the serial run:
 // its pieces together hold every cell of the serial file exactly once, each
 // rank wrote a piece (the cell field `rank` takes every value 0..ranks-1), and
-// the displacement at each point is the serial one to `tolerance` times the
-// largest. Read with VTK's own readers, as ParaView reads them.
+// the displacement at each cell's points is the serial cell's to `tolerance`
+// times the largest. Read with VTK's own readers, as ParaView reads them.
 // usage: pieces_match_serial SERIAL.vtu PARALLEL.pvtu RANKS TOLERANCE
 #include <vtkCell.h>
 #include <vtkCellData.h>
 #include <vtkDataArray.h>
+#include <vtkIdList.h>
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkUnstructuredGrid.h>
@@ -74,23 +75,31 @@ void check_ranks(vtkUnstructuredGrid* parallel, int ranks) {
          std::to_string(ranks - 1));
 }
 
+/// Cell by cell (points on a cut's two faces share positions, so points are
+/// matched through the cell they belong to): each piece cell's points are its
+/// serial cell's, in the same order, with the same displacement.
 void check_displacements(vtkUnstructuredGrid* serial, vtkUnstructuredGrid* parallel, const Grid& grid,
                          double tolerance) {
   vtkDataArray* u_serial = serial->GetPointData()->GetArray("displacement");
   vtkDataArray* u_parallel = parallel->GetPointData()->GetArray("displacement");
   if (!u_serial || !u_parallel) fail("a file has no point field 'displacement'");
-  std::map<Key, vtkIdType> serial_point;
+  std::map<Key, vtkIdType> serial_cell;
+  for (vtkIdType c = 0; c < serial->GetNumberOfCells(); ++c) serial_cell[cell_key(serial, c, grid)] = c;
   double largest = 0.0;
-  for (vtkIdType p = 0; p < serial->GetNumberOfPoints(); ++p) {
-    serial_point[grid.key(0, serial->GetPoint(p))] = p;
+  for (vtkIdType p = 0; p < serial->GetNumberOfPoints(); ++p)
     for (int i = 0; i < 3; ++i) largest = std::max(largest, std::abs(u_serial->GetComponent(p, i)));
-  }
   double worst = 0.0;
-  for (vtkIdType p = 0; p < parallel->GetNumberOfPoints(); ++p) {
-    auto it = serial_point.find(grid.key(0, parallel->GetPoint(p)));
-    if (it == serial_point.end()) fail("the pieces' point " + std::to_string(p) + " is not a serial point");
-    for (int i = 0; i < 3; ++i)
-      worst = std::max(worst, std::abs(u_parallel->GetComponent(p, i) - u_serial->GetComponent(it->second, i)));
+  vtkNew<vtkIdList> mine, theirs;
+  for (vtkIdType c = 0; c < parallel->GetNumberOfCells(); ++c) {
+    parallel->GetCellPoints(c, mine);
+    serial->GetCellPoints(serial_cell.at(cell_key(parallel, c, grid)), theirs);
+    for (vtkIdType a = 0; a < mine->GetNumberOfIds(); ++a) {
+      const vtkIdType p = mine->GetId(a), q = theirs->GetId(a);
+      if (grid.key(0, parallel->GetPoint(p)) != grid.key(0, serial->GetPoint(q)))
+        fail("the pieces' cell " + std::to_string(c) + " lists its points in another order than the serial cell");
+      for (int i = 0; i < 3; ++i)
+        worst = std::max(worst, std::abs(u_parallel->GetComponent(p, i) - u_serial->GetComponent(q, i)));
+    }
   }
   std::printf("pieces: displacement differs from serial by %.3g of the largest %.6g\n", worst / largest, largest);
   if (worst > tolerance * largest) {
