@@ -108,6 +108,7 @@ int run_command_line(const std::vector<std::string>& args) {
     return 1;
   }
   set_process_ranks(ranks);
+  if (ranks.distributed()) set_first_rank_sender(&send_from_first_rank);
   share_cores_among_local_ranks(ranks);
   try {
     a = parse(args);

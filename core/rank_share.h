@@ -24,6 +24,22 @@ inline RankShare& process_ranks_storage() {
 inline const RankShare& process_ranks() { return process_ranks_storage(); }
 inline void set_process_ranks(RankShare share) { process_ranks_storage() = share; }
 
+/// Sends rank 0's numbers to every rank: each rank passes its own (the
+/// others' are ignored) and gets rank 0's back. A collective call. The
+/// command line sets PETSc's (solvers/petsc_session.h) under mpirun, so the
+/// layers below the solvers can use it without knowing PETSc; unset in a
+/// serial run, where there is nobody to send to.
+using FirstRankSender = std::vector<double> (*)(std::vector<double>);
+inline FirstRankSender& first_rank_sender_storage() {
+  static FirstRankSender sender = nullptr;
+  return sender;
+}
+inline void set_first_rank_sender(FirstRankSender sender) { first_rank_sender_storage() = sender; }
+inline std::vector<double> from_first_rank(std::vector<double> values) {
+  const FirstRankSender sender = first_rank_sender_storage();
+  return sender ? sender(std::move(values)) : values;
+}
+
 /// [begin, end) of `rank`'s part of n items split as PETSc splits ownership
 /// (PetscSplitOwnership): n / count each, one more for the first n % count.
 inline std::pair<Index, Index> even_part(Index n, int rank, int count) {

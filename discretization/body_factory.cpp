@@ -9,6 +9,7 @@
 #include "geometry/box_mesher.h"
 #include "geometry/cut_cell_removal.h"
 #include "geometry/cut_surface.h"
+#include "geometry/mesh_from_first_rank.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/msh_reader.h"
 
@@ -16,18 +17,20 @@ namespace kerf {
 namespace {
 
 /// The mesh FEM uses: the scene's mesh file, or gmsh on the box at `size`,
-/// conforming to and opened along `cuts`.
+/// conforming to and opened along `cuts`. Made on rank 0 alone under mpirun.
 Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
-  if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
-  BoxMeshRequest request;
-  request.cuts = std::move(cuts);
-  request.dimension = scene.dimension;
-  request.order = order;
-  request.min = scene.box->min;
-  request.max = scene.box->max;
-  request.size = size;
-  for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
-  return mesh_box(request);
+  return mesh_from_first_rank([&] {
+    if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
+    BoxMeshRequest request;
+    request.cuts = std::move(cuts);
+    request.dimension = scene.dimension;
+    request.order = order;
+    request.min = scene.box->min;
+    request.max = scene.box->max;
+    request.size = size;
+    for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
+    return mesh_box(request);
+  });
 }
 
 /// Under MPI, a body computes only its rank's cells, nodes or Gauss points

@@ -6,6 +6,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include "core/rank_share.h"
 
@@ -30,6 +31,10 @@ void ensure_petsc_initialized();
 /// Returns when every rank has called it (files one rank writes that another
 /// needs: the output folder, the pieces of a .pvtu).
 void wait_for_every_rank();
+
+/// Rank 0's values on every rank (each passes its own; only rank 0's are
+/// read): a PETSc vector held by rank 0, gathered to all. Collective.
+std::vector<double> send_from_first_rank(std::vector<double> values);
 
 /// This process's rank among those mpirun started (Open MPI or another PMIx
 /// launcher: PETSc is then started here); 0 of 1 without a launcher, and

@@ -1,14 +1,15 @@
 #!/usr/bin/env bash
 # An error under mpirun stops every rank, never a hang, printed once with the
 # exit code the serial run gives: a bad scene (2); rank 0 alone failing (it
-# alone creates the output folder); every rank failing alike (a linear solve
+# alone creates the output folder; it alone reads a mesh file, here not one,
+# while the others wait for the mesh); every rank failing alike (a linear solve
 # that diverges; a singular stiffness: the body held in x only); and rank 1
 # alone failing (its ParaView piece cannot be written), whose summary.json
 # rank 1 then writes itself, naming the rank.
 # usage: errors_stop_every_rank.sh KERF SCENE OUT_DIR
 set -u
 kerf=$1 scene=$2 out=$3
-rm -rf "$out"
+rm -rf "$out" && mkdir -p "$out"
 fail() { echo "FAILED: $*"; exit 1; }
 launch() { timeout 60 mpirun --allow-run-as-root --oversubscribe -np 3 "$kerf" run "$scene" \
   --set solve.linear_solver=petsc "$@" 2>&1; }
@@ -34,6 +35,11 @@ expect_stop 2 ".*material.poisson" "$log" "$code"
 
 log=$(launch --out /dev/null/cannot_be_made); code=$?
 expect_stop 1 ".*cannot create directories" "$log" "$code"
+
+echo "garbage" > "$out/not_a_mesh.msh"
+log=$(launch --set "domain={mesh: $out/not_a_mesh.msh}" --out "$out/bad_mesh"); code=$?
+expect_stop 1 ".*not_a_mesh.msh:1: not a gmsh mesh" "$log" "$code"
+expect_summary "$out/bad_mesh" 0
 
 log=$(launch --set "solve.petsc=-ksp_type cg -pc_type none -ksp_max_it 2" --out "$out/diverged"); code=$?
 expect_stop 1 ".*KSP diverged" "$log" "$code"

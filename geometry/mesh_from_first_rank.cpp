@@ -1,0 +1,46 @@
+#include "geometry/mesh_from_first_rank.h"
+
+#include "core/check.h"
+#include "core/rank_share.h"
+
+namespace kerf {
+
+std::vector<double> mesh_to_numbers(const Mesh& mesh) {
+  // Header: dimension, order, node count, cell entries; then x y z per node and
+  // the cells' node indices (exact as doubles: below 2^53).
+  std::vector<double> numbers{static_cast<double>(mesh.dimension), static_cast<double>(mesh.order),
+                              static_cast<double>(mesh.nodes.size()), static_cast<double>(mesh.cells.size())};
+  numbers.reserve(4 + 3 * mesh.nodes.size() + mesh.cells.size());
+  for (const Vec3& x : mesh.nodes) numbers.insert(numbers.end(), x.data(), x.data() + 3);
+  numbers.insert(numbers.end(), mesh.cells.begin(), mesh.cells.end());
+  return numbers;
+}
+
+Mesh mesh_from_numbers(const std::vector<double>& numbers) {
+  KERF_CHECK(numbers.size() >= 4, "internal: a mesh sent between ranks has no header");
+  Mesh mesh;
+  mesh.dimension = static_cast<int>(numbers[0]);
+  mesh.order = static_cast<int>(numbers[1]);
+  const std::size_t nodes = static_cast<std::size_t>(numbers[2]), entries = static_cast<std::size_t>(numbers[3]);
+  KERF_CHECK(numbers.size() == 4 + 3 * nodes + entries, "internal: a mesh sent between ranks has ",
+             numbers.size(), " numbers; its header says ", 4 + 3 * nodes + entries);
+  mesh.nodes.resize(nodes);
+  const double* x = numbers.data() + 4;
+  for (std::size_t n = 0; n < nodes; ++n) mesh.nodes[n] = Vec3(x[3 * n], x[3 * n + 1], x[3 * n + 2]);
+  const double* cells = x + 3 * nodes;
+  mesh.cells.assign(cells, cells + entries);
+  return mesh;
+}
+
+Mesh mesh_from_first_rank(const std::function<Mesh()>& make) {
+  const RankShare& ranks = process_ranks();
+  if (!ranks.distributed()) return make();
+  if (ranks.rank == 0) {
+    Mesh mesh = make();
+    from_first_rank(mesh_to_numbers(mesh));
+    return mesh;
+  }
+  return mesh_from_numbers(from_first_rank({}));
+}
+
+}  // namespace kerf

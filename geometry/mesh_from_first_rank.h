@@ -1,0 +1,22 @@
+#pragma once
+// A mesh made once, on rank 0 (gmsh on the box, or a .msh file read), and
+// sent to the other ranks: every rank running gmsh on the whole body at once
+// would multiply meshing's memory and time by the ranks on a machine.
+#include <functional>
+#include <vector>
+
+#include "geometry/mesh.h"
+
+namespace kerf {
+
+/// make() on rank 0 alone; every rank returns rank 0's mesh. A collective
+/// call under mpirun (core/rank_share.h's from_first_rank); make() itself in
+/// a serial run. When make() throws on rank 0, the others wait in the call
+/// until the job is stopped (the command line stops every rank).
+Mesh mesh_from_first_rank(const std::function<Mesh()>& make);
+
+/// The mesh as the numbers that go between ranks, and back.
+std::vector<double> mesh_to_numbers(const Mesh& mesh);
+Mesh mesh_from_numbers(const std::vector<double>& numbers);
+
+}  // namespace kerf
