@@ -333,18 +333,49 @@ void FemBody::consistent_mass(const BlockSink& sink) const {
 
 void FemBody::external_force(double, Vector& f) const { f = load_; }
 
+void FemBody::add_gravity(const Vec3& gravity) {
+  // rho g times the integral of N_a over each cell (the row sums of its
+  // scalar mass, the N_b summing to 1), with the rule's shape values found
+  // once and the cells' integrals in parallel: every rank integrates every
+  // cell (the load is whole on each), so this is set-up no rank divides.
+  const int dim = mesh_.dimension, order = mesh_.order;
+  const QuadratureRule& rule = mass_rule_;
+  const std::size_t nq = rule.points.size(), npc = static_cast<std::size_t>(npc_);
+  std::vector<double> N(nq * npc), dN(nq * npc * dim);
+  for (std::size_t q = 0; q < nq; ++q) {
+    simplex_shape_values(dim, order, rule.points[q], &N[q * npc]);
+    simplex_shape_gradients(dim, order, rule.points[q], &dN[q * npc * dim]);
+  }
+  const Index cells = mesh_.cell_count();
+  std::vector<double> integral(static_cast<std::size_t>(cells) * npc, 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < cells; ++c) {
+    const auto nodes = mesh_.cell(c);
+    double* w = &integral[static_cast<std::size_t>(c) * npc];
+    for (std::size_t q = 0; q < nq; ++q) {
+      Mat3 J = Mat3::Identity();
+      for (int i = 0; i < dim; ++i)
+        for (int k = 0; k < dim; ++k) {
+          double sum = 0.0;
+          for (std::size_t a = 0; a < npc; ++a) sum += mesh_.nodes[nodes[a]][i] * dN[(q * npc + a) * dim + k];
+          J(i, k) = sum;
+        }
+      const double scale = density_ * rule.weights[q] * J.determinant();  // 2D: the z row and column are 1
+      for (std::size_t a = 0; a < npc; ++a) w[a] += scale * N[q * npc + a];
+    }
+  }
+  for (Index c = 0; c < cells; ++c) {
+    const auto nodes = mesh_.cell(c);
+    for (std::size_t a = 0; a < npc; ++a)
+      for (int i = 0; i < dim; ++i)
+        load_[dim * nodes[a] + i] += integral[static_cast<std::size_t>(c) * npc + a] * gravity[i];
+  }
+}
+
 void FemBody::build_loads(const Scene& scene) {
   const int dim = mesh_.dimension, order = mesh_.order;
   load_ = Vector::Zero(dof_count());
-  // Gravity: integral of rho g N_a over each cell.
-  if (scene.gravity.squaredNorm() > 0.0) {
-    for (Index c = 0; c < mesh_.cell_count(); ++c) {
-      Eigen::MatrixXd M = element_scalar_mass(c);  // row sums = integral of rho N_a
-      auto nodes = mesh_.cell(c);
-      for (int a = 0; a < npc_; ++a)
-        for (int i = 0; i < dim; ++i) load_[dim * nodes[a] + i] += M.row(a).sum() * scene.gravity[i];
-    }
-  }
+  if (scene.gravity.squaredNorm() > 0.0) add_gravity(scene.gravity);
   // Tractions and pressures on the boundary facets whose nodes all lie in the selection.
   const int fdim = dim - 1, nf = facets_.nodes_per_facet;
   QuadratureRule rule = simplex_quadrature(fdim, order + 1);

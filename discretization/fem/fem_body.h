@@ -68,6 +68,8 @@ class FemBody final : public DiscreteBody,
   void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
   /// Element mass matrix (npc x npc, scalar: multiply by the identity per component).
   Eigen::MatrixXd element_scalar_mass(Index c) const;
+  /// rho g integrated against each node's shape function, into load_.
+  void add_gravity(const Vec3& gravity);
   /// Each cell's node pairs (a, b): where column dpn node_b starts in row
   /// dpn node_a, from the row's start; built for one pattern, kept for the next call.
   const std::vector<Index>& pair_offsets(const CsrView& matrix) const;

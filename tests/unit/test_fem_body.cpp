@@ -279,6 +279,36 @@ body_force: {gravity: [0, 0, -9.81]}
   }
 }
 
+// Node by node, gravity's load is the consistent mass times g at every node
+// (sum_b M_ab g = g integral of rho N_a): the mass assembled through its own
+// path, corner and mid-edge nodes alike (tet10's corners pull upwards).
+TEST(FemLoads, GravityIsTheConsistentMassTimesGNodeByNode) {
+  for (int dim : {2, 3})
+    for (int order : {1, 2}) {
+      Scene s = testing::scene_from_text(dim == 3 ? "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
+                                                    "material: {density: 1200.0}\n"
+                                                    "body_force: {gravity: [1.5, -2.0, -9.81]}\n"
+                                                  : "dimension: 2\n"
+                                                    "domain: {box: {min: [0,0], max: [1,1]}}\n"
+                                                    "material: {density: 1200.0}\n"
+                                                    "body_force: {gravity: [1.5, -9.81]}\n");
+      FemBody body(s, testing::unit_box_mesh(dim, order, 0.5));
+      const Index n = body.dof_count();
+      Eigen::MatrixXd mass = Eigen::MatrixXd::Zero(n, n);
+      body.consistent_mass([&](std::span<const Index> dofs, std::span<const double> block) {
+        for (std::size_t a = 0; a < dofs.size(); ++a)
+          for (std::size_t b = 0; b < dofs.size(); ++b) mass(dofs[a], dofs[b]) += block[a * dofs.size() + b];
+      });
+      Vector g(n);
+      for (Index d = 0; d < n; ++d) g[d] = s.gravity[d % dim];
+      Vector f;
+      body.external_force(0.0, f);
+      const Vector expected = mass * g;
+      EXPECT_LT((f - expected).cwiseAbs().maxCoeff(), 1e-12 * expected.cwiseAbs().maxCoeff())
+          << dim << "D order " << order;
+    }
+}
+
 TEST(FemLoads, ConflictingPrescribedValuesAreRefused) {
   Scene s = testing::scene_from_text(R"(
 domain: {box: {min: [0,0,0], max: [1,1,1]}}
