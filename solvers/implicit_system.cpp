@@ -77,6 +77,13 @@ void ImplicitSystem::read_mass() {
   report_.add_stage("mass");
   if (lumped_) {
     lumped_mass_ = mechanics_.lumped_mass();
+    // Whole on every rank: a partial matrix takes it on its own rows only.
+    const RowShare& share = mechanics_.dof_share();
+    own_lumped_mass_ = lumped_mass_;
+    if (share.partial) {
+      own_lumped_mass_.head(share.owned_begin).setZero();
+      own_lumped_mass_.tail(own_lumped_mass_.size() - share.owned_end).setZero();
+    }
     return;
   }
   SparseMatrix mass = stiffness_;
@@ -196,16 +203,7 @@ void ImplicitSystem::combine(double cm, double ck) {
     free_.restrict_values_with([=](Index p) { return ck * k[p] + cm * m[p]; });
   else
     free_.restrict_values_with([=](Index p) { return ck * k[p]; });
-  if (cm == 0.0 || !lumped_) return;
-  // The lumped mass is whole: a partial matrix takes it on its own rows only.
-  const RowShare& share = mechanics_.dof_share();
-  const std::vector<Index>& full_row = free_.free_dofs();
-  const std::vector<Index>& diagonal = free_.restricted_diagonal();
-  double* a = free_.restricted_values();
-  for (std::size_t i = 0; i < full_row.size(); ++i) {
-    const Index r = full_row[i];
-    if (!share.partial || (r >= share.owned_begin && r < share.owned_end)) a[diagonal[i]] += cm * lumped_mass_[r];
-  }
+  if (cm != 0.0 && lumped_) free_.add_to_diagonal(cm, own_lumped_mass_);
 }
 
 void ImplicitSystem::factorize_now(const std::string& where) {

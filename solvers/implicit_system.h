@@ -47,6 +47,7 @@ class ImplicitSystem {
   std::vector<double> mass_values_;  // consistent mass in the pattern of K
   std::vector<double> linear_values_;  // a linear body's own stiffness (with contact) in the pattern of K
   Vector lumped_mass_;
+  Vector own_lumped_mass_;  // this rank's rows of it (all of it unless the matrix is partial)
   bool has_mass_ = false;
   bool lumped_ = false;
   bool stiffness_assembled_ = false;

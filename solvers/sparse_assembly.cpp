@@ -208,7 +208,14 @@ void FreeDofs::prepare_matrix(const SparseMatrix& full) {
     for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
       if (free_of_full_[full.innerIndexPtr()[p]] >= 0) source_position_.push_back(p);
   }
-  restricted_diagonal_ = diagonal_positions(restricted_);
+  restricted_diagonal_.clear();
+}
+
+void FreeDofs::add_to_diagonal(double scale, const Vector& diagonal) {
+  if (restricted_diagonal_.empty()) restricted_diagonal_ = diagonal_positions(restricted_);
+  double* values = restricted_.valuePtr();
+  for (std::size_t i = 0; i < full_of_free_.size(); ++i)
+    values[restricted_diagonal_[i]] += scale * diagonal[full_of_free_[i]];
 }
 
 }  // namespace kerf

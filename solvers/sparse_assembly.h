@@ -60,16 +60,15 @@ class FreeDofs {
 #pragma omp parallel for schedule(static)
     for (std::ptrdiff_t k = 0; k < count; ++k) out[k] = value_of(source[k]);
   }
-  double* restricted_values() { return restricted_.valuePtr(); }
-  /// Positions of the restricted matrix's diagonal entries, by free row.
-  const std::vector<Index>& restricted_diagonal() const { return restricted_diagonal_; }
+  /// Adds scale * diagonal[d] to the restricted matrix's diagonal at each free dof d.
+  void add_to_diagonal(double scale, const Vector& diagonal);
 
  private:
   std::vector<Index> free_of_full_;
   std::vector<Index> full_of_free_;
   SparseMatrix restricted_;
   std::vector<Index> source_position_;  // for each restricted value, its position in the full matrix
-  std::vector<Index> restricted_diagonal_;
+  std::vector<Index> restricted_diagonal_;  // by free dof, found at the first add_to_diagonal
 };
 
 }  // namespace kerf
