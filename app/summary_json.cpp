@@ -39,6 +39,10 @@ json solver_counters(const RunReport& report) {
               {"cut_updated_points", c.updated_points}};
   if (s.critical_dt_s) out["critical_dt_s"] = *s.critical_dt_s;
   if (s.critical_dt_element_bound_s) out["critical_dt_element_bound_s"] = *s.critical_dt_element_bound_s;
+  if (s.critical_dt_min_s) {
+    out["critical_dt_min_s"] = *s.critical_dt_min_s;
+    out["substeps_max"] = s.substeps_max;
+  }
   for (const auto& [name, value] : report.extras) out[name] = value;
   return out;
 }

@@ -48,6 +48,8 @@ struct SolverCounters {
   long contact_augmentations = 0;  // augmented Lagrangian rounds (static contact)
   std::optional<double> critical_dt_s;                // central differences: the stable step (s)
   std::optional<double> critical_dt_element_bound_s;  // FEM's element-by-element bound (s)
+  std::optional<double> critical_dt_min_s;  // the smallest estimate after a cut grew (central differences)
+  int substeps_max = 1;                     // the most substeps a step took after a growth lowered the estimate
 };
 
 /// What growing cuts (and cut-out cells) did to the discretization.

@@ -30,18 +30,23 @@ class CentralDifferenceStepper final : public Stepper {
                "positive diagonal mass");
     inverse_mass_ = mass_.cwiseInverse();
     critical_step_ = estimate_critical_step();
+    fresh_estimate_ = true;
+    probe_length_ = probe_length_of(mechanics_.body());
+    dt_location_ = scene.locate("solve.dt").describe();
+  }
+
+  void initialize(SolverState& s) override {
+    // At the start a dt above the critical step is the scene's error; after a growth it is taken in substeps.
     if (options_.dt > critical_step_ && !options_.allow_unstable_dt) {
       std::ostringstream why;
-      why << scene.locate("solve.dt").describe() << ": value " << options_.dt
+      why << dt_location_ << ": value " << options_.dt
           << " s is above the critical time step of central differences for this discretization and material, "
           << critical_step_ << " s (2 / omega_max by Lanczos" << (beta_ > 0 ? ", with stiffness damping" : "")
           << "); expected dt <= " << critical_step_ << " s, or an implicit integrator (or solve.allow_unstable_dt: true to "
           << "run it anyway)";
       throw Error(why.str());
     }
-  }
-
-  void initialize(SolverState& s) override {
+    fresh_estimate_ = false;
     const Index n = mechanics_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
@@ -51,36 +56,29 @@ class CentralDifferenceStepper final : public Stepper {
     acceleration(s.v, s.a);
   }
 
+  /// One step of dt, in substeps_ equal substeps when a cut lowered the critical step below dt.
   void advance(SolverState& s, double dt) override {
-    const double t1 = s.t + dt;
-    half_velocity_ = s.v + 0.5 * dt * s.a;
-    zero_constrained(half_velocity_);
-    s.u += dt * half_velocity_;
-    mechanics_.external_force(t1, f_ext_);
-    // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
-    {
-      ScopedTimer timer(report_.phases, Phase::assembly);  // the explicit step's phase studies compare
-      if (beta_ != 0.0) {
-        damped_u_ = s.u + beta_ * half_velocity_;
-        mechanics_.internal_force(damped_u_, f_int_);
-      } else {
-        mechanics_.internal_force(s.u, f_int_);
-      }
-    }
-    acceleration(half_velocity_, s.a);
-    s.v = half_velocity_ + 0.5 * dt * s.a;
-    zero_constrained(s.v);
-    s.t = t1;
+    const double t0 = s.t, h = dt / substeps_;
+    for (int k = 1; k <= substeps_; ++k) substep(s, h, k == substeps_ ? t0 + dt : t0 + k * h);
     ++s.step;
-    KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", t1,
+    KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", s.t,
                " s): the displacement became NaN or infinite: the explicit solution diverged");
   }
 
   void discretization_changed(SolverState& s) override {
-    // The critical step is not estimated again (a Lanczos run costs an
-    // assembly): the run keeps dt, and a growing instability stops it.
+    // A cut can raise omega_max (steep enriched weights next to its front, a
+    // sliver cell of a remesh): the critical step is estimated again (a
+    // remeshed body's new stepper has just done so) and a dt above it is taken
+    // in equal substeps below it, so a softening cut cannot make the run
+    // unstable. Costs a Lanczos run of force evaluations a growth.
     mass_ = mechanics_.lumped_mass();
     inverse_mass_ = mass_.cwiseInverse();
+    if (!fresh_estimate_) critical_step_ = estimate_critical_step_again();
+    fresh_estimate_ = false;
+    substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(options_.dt / critical_step_)));
+    SolverCounters& solver = report_.solver;
+    solver.critical_dt_min_s = std::min(solver.critical_dt_min_s.value_or(critical_step_), critical_step_);
+    solver.substeps_max = std::max(solver.substeps_max, substeps_);
     // A remeshed body comes with a new stepper, which has read no load yet.
     mechanics_.external_force(s.t, f_ext_);
     if (beta_ != 0.0) {
@@ -124,11 +122,70 @@ class CentralDifferenceStepper final : public Stepper {
     };
     const EigenvalueBound omega2 =
         largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_));
+    mode_ = omega2.ritz_vector;
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
     const double step = damped_critical_step(std::max(lanczos_step, element_bound.value_or(0.0)), beta_);
-    report_.solver.critical_dt_s = step;
-    if (element_bound) report_.solver.critical_dt_element_bound_s = damped_critical_step(*element_bound, beta_);
+    SolverCounters& solver = report_.solver;
+    if (solver.critical_dt_s) return step;  // the run's start was reported; later estimates go to critical_dt_min_s
+    solver.critical_dt_s = step;
+    if (element_bound) solver.critical_dt_element_bound_s = damped_critical_step(*element_bound, beta_);
     return step;
+  }
+
+  /// The stable step after the shape functions changed in place, without
+  /// assembling K: f_int is zero at rest and K x its derivative along x, so
+  /// K x = f_int(e x) / e to first order (exact for a linear material), one
+  /// force evaluation a Lanczos product. Started from the last estimate's
+  /// mode and stopped at a 1% residual, which is added: still an upper bound
+  /// on omega_max.
+  double estimate_critical_step_again() {
+    Vector scaled;
+    auto stiffness_times = [&](const Vector& x, Vector& y) {
+      const double e = probe_length_ / std::max(x.lpNorm<Eigen::Infinity>(), 1e-300);
+      scaled = e * x;
+      mechanics_.internal_force(scaled, y);  // summed over the ranks of a partitioned body
+      y /= e;
+    };
+    LanczosOptions options;
+    options.tolerance = 1e-2;
+    options.start = &mode_;
+    const EigenvalueBound omega2 =
+        largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_), options);
+    mode_ = omega2.ritz_vector;
+    return damped_critical_step(2.0 / std::sqrt(omega2.upper_bound), beta_);
+  }
+
+  /// 1e-7 of the body's bounding-box diagonal (m): the largest displacement a
+  /// matrix-free product applies, small enough that f_int stays linear.
+  static double probe_length_of(const DiscreteBody& body) {
+    Vec3 low = Vec3::Constant(1e300), high = Vec3::Constant(-1e300);
+    for (Index I = 0; I < body.node_count(); ++I) {
+      low = low.cwiseMin(body.node_position(I));
+      high = high.cwiseMax(body.node_position(I));
+    }
+    return 1e-7 * (high - low).norm();
+  }
+
+  /// Velocity Verlet over h, ending at time t1: self-starting, so substeps may differ from the steps around them.
+  void substep(SolverState& s, double h, double t1) {
+    half_velocity_ = s.v + 0.5 * h * s.a;
+    zero_constrained(half_velocity_);
+    s.u += h * half_velocity_;
+    mechanics_.external_force(t1, f_ext_);
+    // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
+    {
+      ScopedTimer timer(report_.phases, Phase::assembly);  // the explicit step's phase studies compare
+      if (beta_ != 0.0) {
+        damped_u_ = s.u + beta_ * half_velocity_;
+        mechanics_.internal_force(damped_u_, f_int_);
+      } else {
+        mechanics_.internal_force(s.u, f_int_);
+      }
+    }
+    acceleration(half_velocity_, s.a);
+    s.v = half_velocity_ + 0.5 * h * s.a;
+    zero_constrained(s.v);
+    s.t = t1;
   }
 
   /// a = M^-1 (f_ext - f_int - alpha M v), zero at constrained dofs; no allocation once sized.
@@ -147,6 +204,11 @@ class CentralDifferenceStepper final : public Stepper {
   std::vector<DirichletDof> constrained_;
   Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_, damped_u_;
   double critical_step_ = 0.0;
+  std::string dt_location_;      // where the scene sets solve.dt, for the refusal
+  Vector mode_;                  // the last estimate's Ritz vector: the next one starts from it
+  double probe_length_ = 0.0;    // m: 1e-7 of the body's diagonal, the matrix-free product's largest displacement
+  bool fresh_estimate_ = false;  // critical_step_ is of the discretization as it is now
+  int substeps_ = 1;             // per step: ceil(dt / critical_step_) after a growth lowered it
 };
 
 }  // namespace

@@ -6,9 +6,9 @@
 namespace kerf {
 
 EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const Vector& lumped_mass,
-                                   const FreeDofs& free, int max_iterations) {
+                                   const FreeDofs& free, const LanczosOptions& options) {
   const Index n = free.free_count();
-  const int m = std::min<int>(max_iterations, n);
+  const int m = std::min<int>(options.max_iterations, n);
   // Symmetric form A = S K S with S = M^-1/2, restricted to the free dofs.
   Vector scale = Vector::Zero(lumped_mass.size()), y;
   for (Index d : free.free_dofs()) scale[d] = 1.0 / std::sqrt(lumped_mass[d]);
@@ -24,6 +24,8 @@ EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const 
   std::vector<double> alpha, beta;
   std::srand(1);
   Q.col(0) = Vector::Random(n).normalized();
+  // A previous Ritz vector with the random one mixed in: a mode it lacks is still reached.
+  if (options.start && options.start->size() == n) Q.col(0) = (*options.start + 0.5 * Q.col(0)).normalized();
   EigenvalueBound result;
   for (int j = 0; j < m; ++j) {
     Vector w = apply(Q.col(j));
@@ -45,7 +47,11 @@ EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const 
     double residual = b * std::abs(eig.eigenvectors()(k - 1, k - 1));
     result.ritz_value = theta;
     result.upper_bound = theta + residual;
-    if (residual <= 1e-6 * theta || b <= 1e-14 * std::abs(theta)) break;
+    const bool done = residual <= options.tolerance * theta || b <= 1e-14 * std::abs(theta) || k == m;
+    if (done) {
+      result.ritz_vector = (Q.leftCols(k) * eig.eigenvectors().col(k - 1)).normalized();
+      break;
+    }
     Q.col(j + 1) = w / b;
   }
   return result;

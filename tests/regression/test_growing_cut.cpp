@@ -75,6 +75,33 @@ TEST(GrowingCut, RunsOneHundredStepsWithBoundedEnergyAndTimesEveryGrowth) {
   EXPECT_GT(opening, 500.0 * uncut) << "the cut behind x = -0.005 should open";
 }
 
+// A tip that stops next to a node makes that node's enriched weights steep
+// (phi's gradient grows as one over the distance to the tip) and raises
+// omega_max: here a growth ends 42 micrometres past the node at (-5, 0) mm and
+// the critical step falls from above dt to 8.2e-6 s (measured), 2.5 times
+// below it. Central differences estimate it again and take each step in
+// substeps; with the estimate ignored (allow_unstable_dt) the same run's
+// energy grows to 1e93 J within the millisecond (measured).
+TEST(GrowingCut, ExplicitRunTakesSubstepsWhenAGrowthLowersTheCriticalStep) {
+  const std::vector<std::string> overrides = {
+      "output.vtk=false", "solve.duration=1.0e-3", "cuts.0.times=[0, 0, 1.0e-4]",
+      "cuts.0.polyline=[[-0.0205, 0.00003], [-0.0105, 0.00003], [-0.00503, 0.00003]]"};
+  json s = testing::run_scene_file("scenes/cutting_2d.yaml", overrides, "growing_cut_substeps");
+  ASSERT_EQ(s["status"], "ok");
+  const double dt = 2e-5;  // the scene's
+  const json& solver = s["solver"];
+  EXPECT_GT(solver["critical_dt_s"].get<double>(), dt);
+  EXPECT_LT(solver["critical_dt_min_s"].get<double>(), dt / 2);
+  EXPECT_GE(solver["substeps_max"].get<int>(), 3);
+  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_substeps/probes.csv");
+  ASSERT_EQ(rows.size(), 51u);
+  for (const auto& r : rows) {
+    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
+    ASSERT_TRUE(std::isfinite(stored));
+    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << "t = " << r.at("time");
+  }
+}
+
 // FEM follows the same growing cut by meshing the plate again at each new
 // piece (`fem: remesh`) or removing the cells it crosses (`fem: remove`), the
 // state carried onto the new nodes: the run ends with the energy bounded by
