@@ -43,13 +43,18 @@ def run(scene, overrides, out):
     args = [KERF, "run", os.path.join(ROOT, scene), "--out", out, "--quiet", "--set", "output.vtk=false"]
     for o in overrides:
         args += ["--set", o]
-    subprocess.run(args, stderr=subprocess.DEVNULL)
-    with open(os.path.join(out, "summary.json")) as f:
+    done = subprocess.run(args, stderr=subprocess.PIPE, text=True)
+    path = os.path.join(out, "summary.json")
+    if not os.path.exists(path):  # refused before it ran (exit code 2)
+        return {"status": "refused", "error": done.stderr.strip()}
+    with open(path) as f:
         return json.load(f)
 
 
 def cell(summary, upper, lower, reference, note=""):
     """The error as a table cell; a run that stopped says why, shortly."""
+    if summary["status"] == "refused":
+        return "refused"
     if summary["status"] != "ok":
         return "singular stiffness" if "positive definite" in summary.get("error", "") else "stopped"
     return f"{100 * error(opening(summary, upper, lower), reference):.2f}%{note}"

@@ -32,6 +32,7 @@ void timing_study(const StudyOptions& options);
 void stability_study(const StudyOptions& options);
 void pareto_study(const StudyOptions& options);
 void cut_study(const StudyOptions& options);
+void cut_convergence_study(const StudyOptions& options);
 void solvers_study(const StudyOptions& options);
 void scaling_study(const StudyOptions& options);
 

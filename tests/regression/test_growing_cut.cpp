@@ -42,6 +42,16 @@ std::vector<std::map<std::string, double>> read_probes(const std::string& path) 
   return rows;
 }
 
+/// Damped, and a cut only frees the body: what it stores never exceeds the work done on it.
+void expect_stored_energy_within_the_work(const std::vector<std::map<std::string, double>>& rows,
+                                          const std::string& what = "") {
+  for (const auto& r : rows) {
+    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
+    ASSERT_TRUE(std::isfinite(stored)) << what << " t = " << r.at("time");
+    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << what << " t = " << r.at("time");
+  }
+}
+
 TEST(GrowingCut, RunsOneHundredStepsWithBoundedEnergyAndTimesEveryGrowth) {
   json s = testing::run_scene_file("scenes/cutting_2d.yaml", {"output.vtk=false"}, "growing_cut");
   ASSERT_EQ(s["status"], "ok");
@@ -61,12 +71,7 @@ TEST(GrowingCut, RunsOneHundredStepsWithBoundedEnergyAndTimesEveryGrowth) {
   EXPECT_GE(s["solver"]["cut_updated_points"].get<double>(), s["solver"]["cut_updated_nodes"].get<double>());
   const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut/probes.csv");
   ASSERT_EQ(rows.size(), 101u);
-  for (const auto& r : rows) {
-    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
-    ASSERT_TRUE(std::isfinite(stored));
-    // Damped, and a cut only frees the body: what it stores never exceeds the work done on it.
-    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << "t = " << r.at("time");
-  }
+  expect_stored_energy_within_the_work(rows);
   const double opening = rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy");
   // Uncut, the probes 20 micrometres apart would separate by the strain (1e-3)
   // times that gap; the probes follow the cut as it reaches them, and it opens
@@ -95,11 +100,7 @@ TEST(GrowingCut, ExplicitRunTakesSubstepsWhenAGrowthLowersTheCriticalStep) {
   EXPECT_GE(solver["substeps_max"].get<int>(), 3);
   const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_substeps/probes.csv");
   ASSERT_EQ(rows.size(), 51u);
-  for (const auto& r : rows) {
-    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
-    ASSERT_TRUE(std::isfinite(stored));
-    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << "t = " << r.at("time");
-  }
+  expect_stored_energy_within_the_work(rows);
 }
 
 // FEM follows the same growing cut by meshing the plate again at each new
@@ -129,11 +130,7 @@ TEST(GrowingCut, FemRemeshesOrRemovesCellsAsTheCutGrows) {
     EXPECT_EQ(s["solver"]["cut_remeshes"], 19) << fem;
     const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/" + name + "/probes.csv");
     ASSERT_EQ(rows.size(), 101u);
-    for (const auto& r : rows) {
-      const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
-      ASSERT_TRUE(std::isfinite(stored));
-      EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << fem << " t = " << r.at("time");
-    }
+    expect_stored_energy_within_the_work(rows, fem);
     const double opening = rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy");
     const double uncut = 1000.0 / 1e6 * (std::string(fem) == "remove" ? 3e-3 : 2e-5);
     EXPECT_GT(opening, 5.0 * uncut) << fem << ": the cut behind x = -0.005 should open";
@@ -224,11 +221,7 @@ TEST(GrowingCut, SmoothedGradientsRunOneHundredStepsWithBoundedEnergy) {
   EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 19);
   const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_smoothed/probes.csv");
   ASSERT_EQ(rows.size(), 101u);
-  for (const auto& r : rows) {
-    const double stored = r.at("energy_kinetic") + r.at("energy_strain"), work = r.at("energy_external_work");
-    ASSERT_TRUE(std::isfinite(stored));
-    EXPECT_LE(stored, work * (1.0 + 1e-9) + 1e-15) << "t = " << r.at("time");
-  }
+  expect_stored_energy_within_the_work(rows);
   EXPECT_GT(rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy"), 500.0 * 1000.0 / 1e6 * 2e-5);
 }
 
