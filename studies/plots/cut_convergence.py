@@ -18,6 +18,7 @@ with open(os.path.join(out, "cut_convergence.json")) as f:
     study = json.load(f)
 points = [p for p in study["points"] if p["status"] == "ok"]
 methods = list(dict.fromkeys(p["method"] for p in points))
+colour = {m: f"C{i}" for i, m in enumerate(methods)}  # the same method, the same colour in every panel
 
 fig, axes = plt.subplots(1, 3, figsize=(16, 4.8))
 for ax, key, title in ((axes[0], "sag_error_percent", "End sag"), (axes[1], "opening_error_percent", "Opening")):
@@ -28,7 +29,7 @@ for ax, key, title in ((axes[0], "sag_error_percent", "End sag"), (axes[1], "ope
             continue
         order = study["observed_order"].get(m, {}).get(key.split("_")[0])
         label = m + (f" (order {order:.2f})" if order is not None else "")
-        drawn = ax.loglog([1e3 * h for h, _ in line], [abs(e) for _, e in line], "o-", label=label)
+        drawn = ax.loglog([1e3 * h for h, _ in line], [abs(e) for _, e in line], "o-", label=label, color=colour[m])
         below = [(h, e) for h, e in line if e < 0]
         ax.plot([1e3 * h for h, _ in below], [abs(e) for _, e in below], "o", mfc="white",
                 color=drawn[0].get_color())
@@ -48,7 +49,8 @@ for m in methods:
                   if p["shift_plane_m"] == p["shift_front_m"])
     if not both:
         continue
-    drawn = ax.plot([1e3 * s for s, _ in both], [e for _, e in both], "o-", label=m + ": plane and front moved")
+    drawn = ax.plot([1e3 * s for s, _ in both], [e for _, e in both], "o-", label=m + ": plane and front moved",
+                    color=colour[m])
     for p in swept:
         if p["shift_plane_m"] != p["shift_front_m"]:
             alone = "plane" if p["shift_plane_m"] > 0 else "front"
