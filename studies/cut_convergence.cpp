@@ -33,7 +33,6 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
-#include <tuple>
 
 #include "core/check.h"
 #include "studies/study_support.h"
@@ -47,6 +46,7 @@ constexpr double probe_offset = 0.004;                        // m, either side 
 constexpr double density = 1000.0, gravity = 9.81;
 constexpr double weight = density * length * width * height * gravity;  // N
 constexpr double sweep_h = 0.002;  // m: the lattice with nodes on the cut's plane and front
+const std::vector<double> fem_sizes{0.003, 0.002, 0.0015, 0.0012, 0.001};  // m; the last is the reference
 
 // The full study's reference (tet10 remesh at 1 mm) and each method's error at
 // 3 mm, in percent, as committed in results/cut_convergence/cut_convergence.json.
@@ -121,6 +121,10 @@ Json point_of(const Method& m, double h, Shift shift, const Json& summary) {
   p["reaction_z_N"] = probes["support"]["reaction"][2];
   p["setup_s"] = summary["timing"]["setup_s"];
   p["solve_s"] = summary["timing"]["solve_s"];
+  // The run's cost: every phase (setup_s and solve_s leave out the assembly the stepper's start does).
+  double run = 0.0;
+  for (const auto& [phase, seconds] : summary["timing"]["phases"].items()) run += seconds.get<double>();
+  p["run_s"] = run;
   return p;
 }
 
@@ -264,18 +268,14 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
               "the reference equals the one quick mode uses (update reference_sag and reference_opening)");
 }
 
-}  // namespace
-
-void cut_convergence_study(const StudyOptions& options) {
-  const bool quick = options.quick;
-  // 1. What runs. Meshless lattices: at 2.5 mm nodes lie on the cut's plane,
-  // at 2 mm on its plane and its front; 3, 1.5 and 1.2 mm miss both.
+/// Every method, the reference first. Meshless lattices: at 2.5 mm nodes lie on
+/// the cut's plane, at 2 mm on its plane and its front; 3, 1.5 and 1.2 mm miss both.
+std::vector<Method> study_methods() {
   const std::vector<double> meshless{0.003, 0.0025, 0.002, 0.0015, 0.0012};
-  const std::vector<double> fem{0.003, 0.002, 0.0015, 0.0012, 0.001};
-  const std::vector<Method> methods{
-      {"fem_tet10_remesh", "fem", "tet10", "remesh", "", fem},  // the reference
-      {"fem_tet4_remesh", "fem", "tet4", "remesh", "", fem},
-      {"fem_tet4_remove", "fem", "tet4", "remove", "", fem},
+  return {
+      {"fem_tet10_remesh", "fem", "tet10", "remesh", "", fem_sizes},  // the reference
+      {"fem_tet4_remesh", "fem", "tet4", "remesh", "", fem_sizes},
+      {"fem_tet4_remove", "fem", "tet4", "remove", "", fem_sizes},
       {"efg", "efg", "", "", "", meshless},
       // EFG with its quadrature converged (4 points a direction: 8 times the
       // points): what its shape functions give without the 2-point rule's error.
@@ -283,38 +283,62 @@ void cut_convergence_study(const StudyOptions& options) {
       {"nodal_smoothed", "nodal", "", "", "smoothed", meshless},
       {"nodal_direct", "nodal", "", "", "direct", meshless},
   };
-  // The sweep: both moved alike, then the plane alone and the front alone.
+}
+
+/// A method's refinement levels: quick mode runs 3 mm only, and not the 4-point EFG (8 s a run there).
+std::vector<double> spacings_of(const Method& m, bool quick) {
+  if (!quick) return m.spacings;
+  return m.quadrature_order ? std::vector<double>{} : std::vector<double>{0.003};
+}
+
+struct PlannedRun {
+  const Method* method;
+  double h;
+  Shift shift;
+  std::string label() const {
+    std::ostringstream l;
+    l << method->label << "_h" << 1e3 * h << "mm";
+    if (!shift.none()) l << "_shift" << 1e3 * shift.plane << "_" << 1e3 * shift.front << "mm";
+    return l.str();
+  }
+};
+
+/// The refinement runs, then the sweep at sweep_h: the cut moved off the
+/// lattice's nodes (both alike, then the plane alone and the front alone),
+/// for tet10 (each moved cut's reference) and the meshless methods (quick:
+/// direct nodal only, on the nodes and 0.1 mm off).
+std::vector<PlannedRun> plan_of(const std::vector<Method>& methods, bool quick) {
   const std::vector<Shift> shifts =
       quick ? std::vector<Shift>{{}, {1e-4, 1e-4}}
             : std::vector<Shift>{{}, {1e-5, 1e-5}, {1e-4, 1e-4}, {3e-4, 3e-4}, {5e-4, 5e-4}, {1e-3, 1e-3},
                                  {1e-4, 0.0}, {0.0, 1e-4}};
-  // Quick: the reference and direct nodal only.
   const std::vector<std::string> swept = quick ? std::vector<std::string>{"fem_tet10_remesh", "nodal_direct"}
                                                : std::vector<std::string>{"fem_tet10_remesh", "nodal_direct",
                                                                           "nodal_smoothed", "efg"};
-  auto spacings = [&](const Method& m) {
-    if (!quick) return m.spacings;
-    return m.quadrature_order ? std::vector<double>{} : std::vector<double>{0.003};  // order 4: 26 s at 3 mm
-  };
-  auto method = [&](const std::string& label) -> const Method& {
-    return *std::find_if(methods.begin(), methods.end(), [&](const Method& m) { return m.label == label; });
-  };
-  std::vector<std::tuple<const Method*, double, Shift>> plan;
+  std::vector<PlannedRun> plan;
   for (const Method& m : methods)
-    for (double h : spacings(m)) plan.emplace_back(&m, h, Shift{});
+    for (double h : spacings_of(m, quick)) plan.push_back({&m, h, Shift{}});
   for (const Shift& shift : shifts)
-    for (const std::string& label : swept)
-      if (!shift.none() || quick) plan.emplace_back(&method(label), sweep_h, shift);
+    for (const std::string& label : swept) {
+      const Method& m = *std::find_if(methods.begin(), methods.end(), [&](const Method& x) { return x.label == label; });
+      if (!shift.none() || quick) plan.push_back({&m, sweep_h, shift});  // unmoved: a refinement run (full)
+    }
+  return plan;
+}
+
+}  // namespace
+
+void cut_convergence_study(const StudyOptions& options) {
+  const bool quick = options.quick;
+  // 1. What runs.
+  const std::vector<Method> methods = study_methods();
+  const std::vector<PlannedRun> plan = plan_of(methods, quick);
 
   // 2. Run every point; a failed run is recorded, then fails a claim.
   StudyRunner runner("cut_convergence", options, static_cast<int>(plan.size()));
   Json points = Json::array();
-  for (const auto& [m, h, shift] : plan) {
-    std::ostringstream label;
-    label << m->label << "_h" << 1e3 * h << "mm";
-    if (!shift.none()) label << "_shift" << 1e3 * shift.plane << "_" << 1e3 * shift.front << "mm";
-    points.push_back(point_of(*m, h, shift, runner.run(label.str(), scene_text(*m, h, shift))));
-  }
+  for (const PlannedRun& r : plan)
+    points.push_back(point_of(*r.method, r.h, r.shift, runner.run(r.label(), scene_text(*r.method, r.h, r.shift))));
   for (const Json& p : points)
     check_claim(p["status"] == "ok", p["method"].get<std::string>() + " at h = " + p["spacing_m"].dump() +
                                          ", shifts " + p["shift_plane_m"].dump() + " " + p["shift_front_m"].dump() +
@@ -322,17 +346,17 @@ void cut_convergence_study(const StudyOptions& options) {
 
   // 3. Errors, orders, the JSON and plot, then the claims.
   const Json reference = quick ? Json{{"sag_m", reference_sag}, {"opening_m", reference_opening}}
-                               : find_point(points, methods[0].label, fem.back(), {});
+                               : find_point(points, methods[0].label, fem_sizes.back(), {});
   add_errors(points, reference);
   Json orders = Json::object();
   for (const Method& m : methods) {
-    std::vector<double> h = spacings(m);
+    std::vector<double> h = spacings_of(m, quick);
     if (m.label == methods[0].label && !quick) h.pop_back();  // the reference itself
     if (h.size() >= 2) orders[m.label] = observed_orders(points, m.label, h);
   }
   const Json result = {{"study", "cut_convergence"}, {"quick", quick}, {"headline", headline_of(points, orders)},
                        {"plots", {"cut_convergence.png"}},
-                       {"reference", {{"method", methods[0].label}, {"spacing_m", fem.back()},
+                       {"reference", {{"method", methods[0].label}, {"spacing_m", fem_sizes.back()},
                                       {"sag_m", reference["sag_m"]}, {"opening_m", reference["opening_m"]},
                                       {"weight_N", weight}}},
                        {"observed_order", orders}, {"sweep_spacing_m", sweep_h}, {"points", points}};
