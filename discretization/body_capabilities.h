@@ -6,7 +6,7 @@
 //
 //   SurfaceSampling        fem, efg, nodal   boundary quadrature points (contact)
 //   WeakConstraints        efg               reactions of weakly imposed constraints
-//   CutsInShapeFunctions   nodal             a cut's new piece updates rows in place
+//   CutsInShapeFunctions   nodal, efg        a cut's new piece updates rows in place
 //   EnrichmentLattices     efg, nodal        the Enrichment Grids' phi for ParaView
 //   DiscretizationFigures  efg, nodal        MLS conditioning for the summary
 //   ElementStepBound       fem               a cheap safe explicit step

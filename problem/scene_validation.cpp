@@ -216,11 +216,6 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
             "value interpolated: with discretization.meshless.gradient smoothed it puts the jump off a kinked cut "
             "near its kinks (a 14-30% error in the opening measured); expected lookup: exact, gradient: direct, or a "
             "cut that does not turn");
-  for (std::size_t i = 0; i < cut.times.size(); ++i)
-    r.require(cut.times[i] <= 0.0 || s.discretization.method != Method::efg, item(key + ".times", i),
-              "value " + number_text(cut.times[i]) + " at vertex " + std::to_string(i) +
-                  ": a growing cut in efg (the Gauss points, loads and weak constraints updated) is not built yet; "
-                  "expected discretization.method nodal or fem, or every vertex present at t = 0");
 }
 
 void validate_solve(const Refusal& r, const SolveOptions& s) {

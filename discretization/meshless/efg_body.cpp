@@ -41,8 +41,9 @@ CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
 
 PointIntegration make_points(const MeshlessDomain& domain, int order) {
   CellQuadrature q = cell_quadrature(domain.background(), order);
-  return PointIntegration(domain.shapes_at(q.position, "the quadrature point"), std::move(q.weight),
-                          domain.nodes().positions, q.per_cell);
+  ShapeTable shapes = domain.shapes_at(q.position, "the quadrature point");
+  return PointIntegration(std::move(shapes), std::move(q.position), std::move(q.weight), domain.nodes().positions,
+                          q.per_cell);
 }
 
 }  // namespace
@@ -50,20 +51,50 @@ PointIntegration make_points(const MeshlessDomain& domain, int order) {
 EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
       nitsche_(scene.discretization.meshless.essential == EssentialMethod::nitsche),
-      points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
-  const int dim = domain_.dimension();
+      points_(make_points(domain_, scene.discretization.meshless.quadrature_order)),
+      scene_(scene) {
   stress_.assign(points_.point_count(), Mat3::Zero());
+  assemble_loads();
+  build_constraints(scene);
+  share_points(share);
+}
+
+void EfgBody::assemble_loads() {
+  const int dim = domain_.dimension();
   load_ = Vector::Zero(dof_count());
   const ShapeTable& t = points_.shapes();
   for (Index p = 0; p < points_.point_count(); ++p) {
     auto near = t.neighbours.of(p);
     const double* phi = t.values_of(p);
     for (std::size_t k = 0; k < near.size(); ++k)
-      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * scene.gravity[i];
+      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * scene_.gravity[i];
   }
-  domain_.add_boundary_loads(scene, load_);
-  build_constraints(scene);
-  share_points(share);
+  domain_.add_boundary_loads(scene_, load_);
+}
+
+CutUpdate EfgBody::update_for_cuts(double t) {
+  // Every rank brings every table up to t (the same on each): the neighbour
+  // lists, hence the schedule and each rank's points and touched rows, stay.
+  CutUpdate update;
+  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t);  // the nodes' own (output, probes)
+  if (changed.empty()) return update;
+  update.nodes = static_cast<Index>(changed.size());
+  const std::vector<Index> rows = points_.points_holding(changed);
+  update.points = static_cast<Index>(
+      domain_.refresh_rows(points_.shapes_in_place(), points_.positions(), rows, "the quadrature point").size());
+  std::vector<char> moved(node_count(), 0);
+  for (Index I : changed) moved[I] = 1;
+  for (WeakConstraint& c : constraints_) {
+    std::vector<Index> held;
+    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+      auto near = c.shapes.neighbours.of(q);
+      if (std::any_of(near.begin(), near.end(), [&](Index J) { return moved[J]; })) held.push_back(q);
+    }
+    domain_.refresh_rows(c.shapes, c.points.position, held, "the boundary quadrature point");
+  }
+  const bool gravity = scene_.gravity.squaredNorm() > 0.0;
+  if ((gravity && update.points > 0) || domain_.boundary_loads_touch(changed)) assemble_loads();
+  return update;
 }
 
 void EfgBody::share_points(RankShare share) {

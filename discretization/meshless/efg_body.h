@@ -20,7 +20,10 @@
 
 namespace kerf {
 
-class EfgBody final : public MeshlessBody, public WeakConstraints, public PartitionedAssembly {
+class EfgBody final : public MeshlessBody,
+                      public WeakConstraints,
+                      public CutsInShapeFunctions,
+                      public PartitionedAssembly {
  public:
   /// alpha = factor (lambda + 2 mu) / h, h the local node spacing.
   static constexpr double nitsche_factor = 10.0;
@@ -51,7 +54,13 @@ class EfgBody final : public MeshlessBody, public WeakConstraints, public Partit
 
   Vec3 weak_reaction(const Vector& u, const Selection& selection) const override;
 
+  /// The rows a growing cut's new pieces touch: the Gauss points', the weak
+  /// constraints' boundary points' and, where they changed, the loads.
+  CutUpdate update_for_cuts(double t) override;
+
  private:
+  /// Gravity through the Gauss points' shape functions, and the boundary loads, into load_.
+  void assemble_loads();
   /// Boundary quadrature points of one weakly imposed condition.
   struct WeakConstraint {
     BoundaryPoints points;
@@ -79,6 +88,7 @@ class EfgBody final : public MeshlessBody, public WeakConstraints, public Partit
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
   PointSchedule own_schedule_;                      // its points' part of points_.schedule()
   std::vector<WeakConstraint> constraints_;
+  Scene scene_;  // the loads, integrated again when a growing cut changes their shape functions
   mutable std::vector<Mat3> stress_;
 };
 

@@ -44,10 +44,10 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     background_on_boundary_ = boundary_node_flags(*background_, facets_);
   }
   index_ = std::make_unique<PointIndex>(nodes_.positions);
-  const bool growing = cuts->grows();
+  growing_ = cuts->grows();
   if (cuts->cut_count() > 0)
     enrichment_ = std::make_unique<CutWeights>(std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
-  if (growing && background_) {
+  if (growing_ && background_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)
       if (!bc.is_dirichlet()) {
@@ -76,7 +76,13 @@ const Mesh& MeshlessDomain::background() const {
 }
 
 ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
-  return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment());
+  return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment(), growing_);
+}
+
+std::vector<Index> MeshlessDomain::refresh_rows(ShapeTable& table, std::span<const Vec3> points,
+                                                std::span<const Index> rows, const std::string& what) const {
+  if (!enrichment_ || rows.empty()) return {};
+  return refresh_shape_rows(table, nodes_, basis_, points, rows, *enrichment_, what, error_context_, mls_remedy());
 }
 
 std::string MeshlessDomain::mls_remedy() const {

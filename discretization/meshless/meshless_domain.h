@@ -67,7 +67,13 @@ class MeshlessDomain {
 
   /// MLS shape functions of the nodes at `points`; a point whose moment matrix
   /// is singular is an error naming it (`what`) and the scene keys to change.
+  /// When a cut grows, the table keeps its factors' gradients for refresh_rows.
   ShapeTable shapes_at(std::span<const Vec3> points, const std::string& what) const;
+  /// Recomputes rows `rows` of a table shapes_at built at `points` with the cuts
+  /// as they stand (update_shapes_for_cuts has brought them to t); returns the
+  /// rows whose factors had changed, hence recomputed.
+  std::vector<Index> refresh_rows(ShapeTable& table, std::span<const Vec3> points, std::span<const Index> rows,
+                                  const std::string& what) const;
   /// The shape table at the nodes themselves (nodal integration points, output);
   /// with meshless.gradient: smoothed (nodal), its gradients are the cells' means.
   const ShapeTable& at_nodes() const { return at_nodes_; }
@@ -111,6 +117,7 @@ class MeshlessDomain {
   std::unique_ptr<PointIndex> load_points_;  // boundary-load quadrature points (growing cuts only)
   MlsBasis basis_;
   std::string error_context_;  // names the scene file and key in MLS errors
+  bool growing_ = false;       // a cut grows: tables keep their factors' gradients
   double domain_size_;
   std::unique_ptr<SmoothedGradients> smoothing_;  // nodal with meshless.gradient: smoothed
   ShapeTable at_nodes_;  // smoothed gradients with smoothing_

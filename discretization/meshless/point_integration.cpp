@@ -11,20 +11,32 @@
 
 namespace kerf {
 
-PointIntegration::PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes,
-                                   Index points_per_cell)
+PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> positions, std::vector<double> weights,
+                                   std::span<const Vec3> nodes, Index points_per_cell)
     : shapes_(std::move(shapes)),
+      positions_(std::move(positions)),
       weights_(std::move(weights)),
       schedule_(schedule_points(shapes_, nodes, points_per_cell)) {
   const Index node_count = static_cast<Index>(nodes.size());
-  KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count(), "integration weights: ", weights_.size(),
-             " for ", shapes_.point_count(), " points");
+  KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count() && positions_.size() == weights_.size(),
+             "integration weights and positions: ", weights_.size(), " and ", positions_.size(), " for ",
+             shapes_.point_count(), " points");
   const auto& nb = shapes_.neighbours;
   const Index slots = static_cast<Index>(nb.index.size());
   slot_point_.resize(slots);
   for (Index p = 0; p < nb.size(); ++p)
     for (Index s = nb.start[p]; s < nb.start[p + 1]; ++s) slot_point_[s] = p;
   users_ = transpose_slots(nb, node_count);
+}
+
+std::vector<Index> PointIntegration::points_holding(std::span<const Index> nodes) const {
+  std::vector<char> holds(shapes_.point_count(), 0);
+  for (Index K : nodes)
+    for (Index s : users_.of(K)) holds[slot_point_[s]] = 1;
+  std::vector<Index> points;
+  for (Index p = 0; p < shapes_.point_count(); ++p)
+    if (holds[p]) points.push_back(p);
+  return points;
 }
 
 void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {

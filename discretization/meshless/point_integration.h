@@ -68,12 +68,19 @@ void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule
 /// Gauss points with weights, and for each node the slots where it appears.
 class PointIntegration {
  public:
-  /// `weights`: one per point of `shapes` (m^3; 2D: m^2); `nodes`: the node
-  /// positions; `points_per_cell`: the points come cell by cell, this many each.
-  PointIntegration(ShapeTable shapes, std::vector<double> weights, std::span<const Vec3> nodes,
-                   Index points_per_cell);
+  /// `shapes` at `positions` (m), `weights` one per point (m^3; 2D: m^2);
+  /// `nodes`: the node positions; `points_per_cell`: the points come cell by
+  /// cell, this many each.
+  PointIntegration(ShapeTable shapes, std::vector<Vec3> positions, std::vector<double> weights,
+                   std::span<const Vec3> nodes, Index points_per_cell);
 
   const ShapeTable& shapes() const { return shapes_; }
+  /// For a growing cut to recompute rows in place: the neighbour lists, hence
+  /// the schedule and the transposed lists, must stay as they are.
+  ShapeTable& shapes_in_place() { return shapes_; }
+  std::span<const Vec3> positions() const { return positions_; }
+  /// The points whose neighbours hold one of `nodes`, ascending.
+  std::vector<Index> points_holding(std::span<const Index> nodes) const;
   std::span<const double> weights() const { return weights_; }
   double weight(Index p) const { return weights_[p]; }
   const PointSchedule& schedule() const { return schedule_; }
@@ -85,6 +92,7 @@ class PointIntegration {
 
  private:
   ShapeTable shapes_;
+  std::vector<Vec3> positions_;
   std::vector<double> weights_;
   PointSchedule schedule_;        // for assembly
   NeighborLists users_;           // per node: the slots holding it
