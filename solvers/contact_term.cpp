@@ -95,6 +95,16 @@ ContactTerm::Sphere ContactTerm::place(const ContactSphere& c, const SurfaceSamp
   return s;
 }
 
+void ContactTerm::refresh_interpolations(const DiscreteBody& body) {
+  for (Sphere& s : spheres_)
+    for (SurfacePoint& p : s.points) {
+      std::optional<PointInterpolation> now = body.interpolation_at(p.position);
+      KERF_CHECK(now && now->nodes == p.interpolation.nodes, "internal: the contact point [", p.position.transpose(),
+                 "] is no longer covered by the nodes it was (a cut may only change weights in place)");
+      p.interpolation = std::move(*now);
+    }
+}
+
 Vec3 ContactTerm::sphere_displacement(std::size_t i, const Vector& u) const {
   Vec3 d = Vec3::Zero();
   for (int k = 0; k < dim_; ++k) d[k] = u[sphere_dof(i) + k];

@@ -77,6 +77,9 @@ class ContactTerm {
   bool augment(const Vector& u, double load);
   /// The state of sphere i at u.
   ContactReading reading(Index sphere, const Vector& u) const;
+  /// The points' interpolation taken again from the body, whose shape
+  /// functions a growing cut changed in place (same points, same multipliers).
+  void refresh_interpolations(const DiscreteBody& body);
 
   /// The spheres' masses into their dofs of `lumped` (kg per dof).
   void fill_lumped_mass(Vector& lumped) const;

@@ -22,6 +22,10 @@ class MechanicalSystem {
   MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report);
 
   const DiscreteBody& body() const { return body_; }
+  /// The body's shape functions changed in place (a growing cut): the terms read them again.
+  void discretization_changed() {
+    if (contact_) contact_->refresh_interpolations(body_);
+  }
   /// The contact term, or null.
   const ContactTerm* contact() const { return contact_.get(); }
   ContactTerm* contact() { return contact_.get(); }

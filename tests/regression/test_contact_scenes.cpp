@@ -1,5 +1,6 @@
 // Contact runs end to end: the supports carry what the sphere pushes
-// (equilibrium through the settled multipliers, also through a cut body), a force-driven sphere settles
+// (equilibrium through the settled multipliers, also through a cut body, and
+// a meshless body cut while pressed ends as if cut first), a force-driven sphere settles
 // at the depth a prescribed one needed for that force, and the explicit
 // example settles near its static answer.
 #include <gtest/gtest.h>
@@ -100,6 +101,34 @@ TEST_P(PressedBlock, SupportsCarryThePushThroughACutUnderTheSphere) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllMethods, PressedBlock, ::testing::Values("fem", "efg", "nodal"));
+
+class PressedMeshlessBlock : public ::testing::TestWithParam<std::string> {};
+
+// A meshless body cut while the sphere presses it (static, the push ramped in
+// four load steps, the blade crossing the contact patch in two growths): the
+// contact points read the changed shape functions, so the run ends where the
+// run with the whole cut from the start ends (frictionless and elastic: the
+// answer does not depend on the path), to the augmentation's tolerance.
+TEST_P(PressedMeshlessBlock, GrowingCutUnderTheSphereEndsWhereTheWholeCutEnds) {
+  const std::string method = "discretization.method=" + GetParam();
+  auto with_times = [&](const std::string& times) {
+    return std::vector<std::string>{
+        method, "solve.load_steps=4",
+        "cuts=[{strip: [[0.0051, -0.001, 0.006], [0.0051, -0.001, 0.0025], [0.0051, 0.005, 0.006], "
+        "[0.0051, 0.005, 0.0025], [0.0051, 0.011, 0.006], [0.0051, 0.011, 0.0025]], times: " + times + "}]"};
+  };
+  auto grown = run_pressed_block(with_times("[0, 0, 0.25, 0.25, 0.5, 0.5]"), "PressedBlock_growing_" + GetParam());
+  auto whole = run_pressed_block(with_times("[0, 0, 0, 0, 0, 0]"), "PressedBlock_whole_" + GetParam());
+  ASSERT_EQ(grown["status"], "ok");
+  ASSERT_EQ(whole["status"], "ok");
+  EXPECT_EQ(grown["timing"]["cut_update_ms"]["count"], 2);
+  const Vec3 push = expect_supports_carry_the_push(grown);
+  const Vec3 whole_push = vec(whole["probes"]["push"]["contact_force"]);
+  EXPECT_LT((push - whole_push).norm(), 1e-3 * whole_push.norm())
+      << "growing " << push.transpose() << " whole " << whole_push.transpose();
+}
+
+INSTANTIATE_TEST_SUITE_P(Meshless, PressedMeshlessBlock, ::testing::Values("efg", "nodal"));
 
 TEST(ExplicitIndentation, SettlesWithinTenPercentOfTheStaticAnswer) {
   // The explicit run keeps the penalty's penetration (about 6% here); the static one does not.
