@@ -121,10 +121,7 @@ Json point_of(const Method& m, double h, Shift shift, const Json& summary) {
   p["reaction_z_N"] = probes["support"]["reaction"][2];
   p["setup_s"] = summary["timing"]["setup_s"];
   p["solve_s"] = summary["timing"]["solve_s"];
-  // The run's cost: every phase (setup_s and solve_s leave out the assembly the stepper's start does).
-  double run = 0.0;
-  for (const auto& [phase, seconds] : summary["timing"]["phases"].items()) run += seconds.get<double>();
-  p["run_s"] = run;
+  p["run_s"] = whole_run_seconds(summary);
   return p;
 }
 
@@ -141,19 +138,6 @@ const Json& find_point(const Json& points, const std::string& method, double h, 
   for (const Json& p : points)
     if (is_point(p, method, h, shift)) return p;
   throw Error("cut_convergence: no point " + method + " at h = " + std::to_string(h));
-}
-
-double percent_off(double value, double reference) { return 100.0 * (value - reference) / reference; }
-
-/// Least-squares slope of log |error| against log h: the observed order.
-double observed_order(const std::vector<double>& h, const std::vector<double>& error) {
-  double sx = 0, sy = 0, sxx = 0, sxy = 0;
-  const double n = static_cast<double>(h.size());
-  for (std::size_t i = 0; i < h.size(); ++i) {
-    const double x = std::log(h[i]), y = std::log(std::abs(error[i]));
-    sx += x, sy += y, sxx += x * x, sxy += x * y;
-  }
-  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
 double number(const Json& points, const std::string& method, double h, Shift shift, const char* key) {

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -183,6 +184,24 @@ void write_json(const std::string& path, const Json& value) { write_file_atomica
 
 void check_claim(bool holds, const std::string& claim) {
   KERF_CHECK(holds, "claim failed: ", claim);
+}
+
+double percent_off(double value, double reference) { return 100.0 * (value - reference) / reference; }
+
+double observed_order(const std::vector<double>& h, const std::vector<double>& error) {
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  const double n = static_cast<double>(h.size());
+  for (std::size_t i = 0; i < h.size(); ++i) {
+    const double x = std::log(h[i]), y = std::log(std::abs(error[i]));
+    sx += x, sy += y, sxx += x * x, sxy += x * y;
+  }
+  return (n * sxy - sx * sy) / (n * sxx - sx * sx);
+}
+
+double whole_run_seconds(const Json& summary) {
+  double run = 0.0;
+  for (const auto& [phase, seconds] : summary["timing"]["phases"].items()) run += seconds.get<double>();
+  return run;
 }
 
 }  // namespace kerf

@@ -73,6 +73,16 @@ void plot(const std::string& script, const std::string& out_dir);
 /// Writes <out>/<study>.json atomically.
 void write_json(const std::string& path, const Json& value);
 
+/// 100 (value - reference) / reference.
+double percent_off(double value, double reference);
+
+/// Least-squares slope of log |error| against log h: the observed order of convergence.
+double observed_order(const std::vector<double>& h, const std::vector<double>& error);
+
+/// A run's cost: the sum of its summary's phases (setup_s and solve_s leave out
+/// the assembly the stepper's start does).
+double whole_run_seconds(const Json& summary);
+
 /// Throws "claim failed: ..." when `holds` is false.
 void check_claim(bool holds, const std::string& claim);
 
