@@ -67,4 +67,15 @@ NeighborLists transpose_slots(const NeighborLists& lists, Index count) {
   return t;
 }
 
+std::vector<Index> lists_holding(const NeighborLists& users, std::span<const Index> slot_list, Index list_count,
+                                 std::span<const Index> targets) {
+  std::vector<char> holds(list_count, 0);
+  for (Index K : targets)
+    for (Index s : users.of(K)) holds[slot_list[s]] = 1;
+  std::vector<Index> lists;
+  for (Index i = 0; i < list_count; ++i)
+    if (holds[i]) lists.push_back(i);
+  return lists;
+}
+
 }  // namespace kerf

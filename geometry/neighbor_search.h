@@ -23,6 +23,11 @@ struct NeighborLists {
 /// (positions in lists.index) that hold it, in increasing order.
 NeighborLists transpose_slots(const NeighborLists& lists, Index count);
 
+/// The lists (ascending) that hold one of `targets`, from the transpose
+/// (`users`: per target, its slots) and each slot's list (`slot_list`).
+std::vector<Index> lists_holding(const NeighborLists& users, std::span<const Index> slot_list, Index list_count,
+                                 std::span<const Index> targets);
+
 /// A k-d tree over points (m; 2D points have z = 0).
 class PointIndex {
  public:

@@ -103,12 +103,7 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
     for (Index p = 0; p < lists.size(); ++p)
       std::fill(slot_row_.begin() + lists.start[p], slot_row_.begin() + lists.start[p + 1], p);
   }
-  std::vector<char> flag(nodes_.size(), 0);
-  for (Index I : changed)
-    for (Index slot : covered_.of(I)) flag[slot_row_[slot]] = 1;
-  std::vector<Index> touched;
-  for (Index p = 0; p < nodes_.size(); ++p)
-    if (flag[p]) touched.push_back(p);
+  std::vector<Index> touched = lists_holding(covered_, slot_row_, nodes_.size(), changed);
   if (smoothing_) {
     smoothing_->set_cuts(*enrichment_, nodes_);
     smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());

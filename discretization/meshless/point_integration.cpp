@@ -30,13 +30,7 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> position
 }
 
 std::vector<Index> PointIntegration::points_holding(std::span<const Index> nodes) const {
-  std::vector<char> holds(shapes_.point_count(), 0);
-  for (Index K : nodes)
-    for (Index s : users_.of(K)) holds[slot_point_[s]] = 1;
-  std::vector<Index> points;
-  for (Index p = 0; p < shapes_.point_count(); ++p)
-    if (holds[p]) points.push_back(p);
-  return points;
+  return lists_holding(users_, slot_point_, shapes_.point_count(), nodes);
 }
 
 void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
