@@ -197,15 +197,6 @@ void add_errors(Json& points, const Openings& reference) {
   }
 }
 
-Json observed_orders(const Json& points, const std::string& method, const std::vector<double>& h) {
-  std::vector<double> centre, front;
-  for (double s : h) {
-    const Json& p = find_point(points, method, s);
-    centre.push_back(p["centre_error_percent"]), front.push_back(p["front_error_percent"]);
-  }
-  return {{"centre", observed_order(h, centre)}, {"front", observed_order(h, front)}, {"levels", h.size()}};
-}
-
 /// Each method's errors at its finest level and its observed order.
 Json headline_of(const Json& points, const Json& orders) {
   Json headline = Json::array(), finest = Json::object();
@@ -358,8 +349,11 @@ void crack3d_study(const StudyOptions& options) {
   for (const SlabMethod& m : methods) {
     std::vector<double> h = spacings_of(m, quick);
     if (&m == &methods[0] && !quick) h.pop_back();  // the reference itself
-    const bool all_ran = std::all_of(h.begin(), h.end(), [&](double s) { return find_point(points, m.label, s)["status"] == "ok"; });
-    if (h.size() >= 2 && all_ran) orders[m.label] = observed_orders(points, m.label, h);
+    std::vector<Json> levels;
+    for (double s : h) levels.push_back(find_point(points, m.label, s));
+    const bool all_ran = std::all_of(levels.begin(), levels.end(), [](const Json& p) { return p["status"] == "ok"; });
+    if (h.size() >= 2 && all_ran)
+      orders[m.label] = observed_orders(levels, {{"centre", "centre_error_percent"}, {"front", "front_error_percent"}});
   }
   const Json result = {
       {"study", "crack3d"}, {"quick", quick}, {"headline", headline_of(points, orders)}, {"plots", {"crack3d.png"}},

@@ -163,15 +163,6 @@ void add_errors(Json& points, const Json& reference) {
   }
 }
 
-Json observed_orders(const Json& points, const std::string& method, const std::vector<double>& h) {
-  std::vector<double> sag, opening;
-  for (double s : h) {
-    const Json& p = find_point(points, method, s, {});
-    sag.push_back(p["sag_error_percent"]), opening.push_back(p["opening_error_percent"]);
-  }
-  return {{"sag", observed_order(h, sag)}, {"opening", observed_order(h, opening)}, {"levels", h.size()}};
-}
-
 /// Each method's sag error at its finest unshifted level and its observed order.
 Json headline_of(const Json& points, const Json& orders) {
   Json headline = Json::array(), finest = Json::object();
@@ -336,7 +327,10 @@ void cut_convergence_study(const StudyOptions& options) {
   for (const Method& m : methods) {
     std::vector<double> h = spacings_of(m, quick);
     if (m.label == methods[0].label && !quick) h.pop_back();  // the reference itself
-    if (h.size() >= 2) orders[m.label] = observed_orders(points, m.label, h);
+    std::vector<Json> levels;
+    for (double s : h) levels.push_back(find_point(points, m.label, s, {}));
+    if (h.size() >= 2)
+      orders[m.label] = observed_orders(levels, {{"sag", "sag_error_percent"}, {"opening", "opening_error_percent"}});
   }
   const Json result = {{"study", "cut_convergence"}, {"quick", quick}, {"headline", headline_of(points, orders)},
                        {"plots", {"cut_convergence.png"}},

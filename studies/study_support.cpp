@@ -198,6 +198,19 @@ double observed_order(const std::vector<double>& h, const std::vector<double>& e
   return (n * sxy - sx * sy) / (n * sxx - sx * sx);
 }
 
+Json observed_orders(const std::vector<Json>& points, const std::vector<std::pair<std::string, std::string>>& errors) {
+  std::vector<double> h;
+  for (const Json& p : points) h.push_back(p["spacing_m"]);
+  Json orders = Json::object();
+  for (const auto& [name, key] : errors) {
+    std::vector<double> error;
+    for (const Json& p : points) error.push_back(p[key]);
+    orders[name] = observed_order(h, error);
+  }
+  orders["levels"] = points.size();
+  return orders;
+}
+
 double whole_run_seconds(const Json& summary) {
   double run = 0.0;
   for (const auto& [phase, seconds] : summary["timing"]["phases"].items()) run += seconds.get<double>();

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "studies/study.h"
@@ -78,6 +79,9 @@ double percent_off(double value, double reference);
 
 /// Least-squares slope of log |error| against log h: the observed order of convergence.
 double observed_order(const std::vector<double>& h, const std::vector<double>& error);
+/// A method's observed orders over its points (each with "spacing_m"): for
+/// each {name, error key}, the order of that error; and "levels".
+Json observed_orders(const std::vector<Json>& points, const std::vector<std::pair<std::string, std::string>>& errors);
 
 /// A run's cost: the sum of its summary's phases (setup_s and solve_s leave out
 /// the assembly the stepper's start does).

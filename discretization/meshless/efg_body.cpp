@@ -51,8 +51,7 @@ PointIntegration make_points(const MeshlessDomain& domain, int order) {
 EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
       nitsche_(scene.discretization.meshless.essential == EssentialMethod::nitsche),
-      points_(make_points(domain_, scene.discretization.meshless.quadrature_order)),
-      scene_(scene) {
+      points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
   stress_.assign(points_.point_count(), Mat3::Zero());
   assemble_loads();
   build_constraints(scene);

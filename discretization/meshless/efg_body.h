@@ -88,7 +88,6 @@ class EfgBody final : public MeshlessBody,
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
   PointSchedule own_schedule_;                      // its points' part of points_.schedule()
   std::vector<WeakConstraint> constraints_;
-  Scene scene_;  // the loads, integrated again when a growing cut changes their shape functions
   mutable std::vector<Mat3> stress_;
 };
 

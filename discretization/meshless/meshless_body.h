@@ -50,13 +50,15 @@ class MeshlessBody : public DiscreteBody,
 
  protected:
   MeshlessBody(const Scene& scene, MeshlessDomain domain)
-      : domain_(std::move(domain)), law_(scene.material, scene.solve.tangent == TangentKind::definite), density_(scene.material.density) {}
+      : domain_(std::move(domain)), law_(scene.material, scene.solve.tangent == TangentKind::definite), density_(scene.material.density),
+        scene_(scene) {}
 
   MeshlessDomain domain_;
   MaterialLaw law_;
   double density_;  // kg/m^3
   Vector load_;     // dead loads (N)
   std::vector<DirichletDof> dirichlet_;
+  Scene scene_;  // the loads, integrated again when a growing cut changes their shape functions
 };
 
 }  // namespace kerf

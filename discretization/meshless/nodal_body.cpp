@@ -42,8 +42,7 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
 
 NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
-      stabilized_(scene.discretization.meshless.stabilization),
-      scene_(scene) {
+      stabilized_(scene.discretization.meshless.stabilization) {
   share_nodes(share);
   const NodeSet& nodes = domain_.nodes();
   if (stabilized_) {

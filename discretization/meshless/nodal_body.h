@@ -84,7 +84,6 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public
   std::vector<Index> touched_nodes_;   // those and their neighbours, sorted
   bool stabilized_;
   StabilizationPairs pairs_;  // empty without the stabilisation
-  Scene scene_;               // the loads, integrated again when a growing cut reaches them
   Vector body_load_;          // gravity alone (N)
   mutable std::vector<double> thread_forces_;  // 2D pass
   std::vector<double> position4_;              // 3D pass: positions 4 to a node (aligned_32)
