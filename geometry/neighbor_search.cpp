@@ -39,21 +39,6 @@ void PointIndex::within(const Vec3& x, double radius, std::vector<Index>& out) c
   std::sort(out.begin(), out.end());
 }
 
-NeighborLists covering_supports(const PointIndex& nodes, std::span<const double> radius,
-                                std::span<const Vec3> queries) {
-  const double largest = radius.empty() ? 0.0 : *std::max_element(radius.begin(), radius.end());
-  const auto& points = nodes.points();
-  NeighborLists lists;
-  std::vector<Index> candidates;
-  for (const Vec3& x : queries) {
-    nodes.within(x, largest, candidates);
-    for (Index i : candidates)
-      if ((x - points[i]).norm() < radius[i]) lists.index.push_back(i);
-    lists.start.push_back(static_cast<Index>(lists.index.size()));
-  }
-  return lists;
-}
-
 NeighborLists transpose_slots(const NeighborLists& lists, Index count) {
   // Counting sort: slots of a target in list order.
   NeighborLists t;

@@ -45,8 +45,4 @@ class PointIndex {
   std::unique_ptr<Tree> tree_;
 };
 
-/// For each query point x, the nodes I whose support covers it: |x - x_I| < radius[I].
-NeighborLists covering_supports(const PointIndex& nodes, std::span<const double> radius,
-                                std::span<const Vec3> queries);
-
 }  // namespace kerf

@@ -12,13 +12,12 @@
 namespace kerf {
 
 CutWeights::CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support,
-                       const PointIndex& index, double time)
+                       const SupportIndex& index, double time)
     : cuts_(std::move(cuts)),
       parts_(cuts_->cut_count()),
       nodes_(nodes.begin(), nodes.end()),
       support_(support.begin(), support.end()),
       index_(index) {
-  if (!support.empty()) largest_support_ = *std::max_element(support.begin(), support.end());
   advance_to(time);
 }
 
@@ -66,7 +65,7 @@ std::vector<Index> CutWeights::reached_by(const CutSurface& surface, Index first
     const CutPiece& piece = surface.pieces[k];
     double radius = 0.0;
     for (int c = 0; c < surface.dimension; ++c) radius = std::max(radius, (piece.corner[c] - piece.centre).norm());
-    index_.within(piece.centre, radius + largest_support_, candidates);
+    index_.reaching(piece.centre, radius, candidates);
     for (Index I : candidates)
       if (distance_to_cut(surface, k, k + 1, nodes_[I]) < support_[I]) out.push_back(I);
   }

@@ -7,7 +7,7 @@
 
 #include "discretization/cut_timeline.h"
 #include "discretization/enrichment/enrichment_rule.h"
-#include "geometry/neighbor_search.h"
+#include "geometry/support_index.h"
 
 namespace kerf {
 
@@ -22,7 +22,7 @@ class CutWeights final : public EnrichmentRule {
  public:
   /// The scene's cuts (kept); nodes and support radii in metres; `index` is a
   /// k-d tree over the nodes and must outlive this object.
-  CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support, const PointIndex& index,
+  CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support, const SupportIndex& index,
              double time);
   ~CutWeights() override;
 
@@ -57,8 +57,7 @@ class CutWeights final : public EnrichmentRule {
   std::vector<Part> parts_;  // one per cut
   std::vector<Vec3> nodes_;
   std::vector<double> support_;
-  double largest_support_ = 0.0;
-  const PointIndex& index_;
+  const SupportIndex& index_;
 };
 
 }  // namespace kerf

@@ -43,7 +43,7 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     facets_ = boundary_facets(*background_);
     background_on_boundary_ = boundary_node_flags(*background_, facets_);
   }
-  index_ = std::make_unique<PointIndex>(nodes_.positions);
+  index_ = std::make_unique<SupportIndex>(nodes_.positions, nodes_.support);
   growing_ = cuts->grows();
   if (cuts->cut_count() > 0)
     enrichment_ = std::make_unique<CutWeights>(std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);

@@ -112,7 +112,7 @@ class MeshlessDomain {
   std::optional<Mesh> background_;
   BoundaryFacets facets_;
   std::vector<char> background_on_boundary_;
-  std::unique_ptr<PointIndex> index_;
+  std::unique_ptr<SupportIndex> index_;
   std::unique_ptr<CutWeights> enrichment_;   // owns the scene's cuts (null without any)
   std::unique_ptr<PointIndex> load_points_;  // boundary-load quadrature points (growing cuts only)
   MlsBasis basis_;

@@ -118,13 +118,13 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
   return mls_shape_functions(nodes.dimension, basis, point, x_, w_, scale, false, shape);
 }
 
-ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
+ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
                        const EnrichmentRule* enrichment, bool keep_factor_gradients) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
-  t.neighbours = covering_supports(index, nodes.support, points);
+  t.neighbours = covering_supports(index, points);
   const Index P = t.point_count();
   t.value.assign(t.neighbours.index.size(), 0.0);
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);

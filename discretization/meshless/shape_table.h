@@ -10,7 +10,7 @@
 #include "discretization/enrichment/enrichment_rule.h"
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
-#include "geometry/neighbor_search.h"
+#include "geometry/support_index.h"
 
 namespace kerf {
 
@@ -61,7 +61,7 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 /// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
 /// With `keep_factor_gradients`, the factors' gradients are stored too
 /// (refresh_shape_rows needs them; 24 bytes a slot).
-ShapeTable shape_table(const NodeSet& nodes, const PointIndex& index, MlsBasis basis, std::span<const Vec3> points,
+ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
                        const EnrichmentRule* enrichment = nullptr, bool keep_factor_gradients = false);
 

@@ -219,7 +219,7 @@ class CutPoints {
 
 struct SmoothedGradients::Row {
   PointShapes shapes;
-  std::vector<Index> candidates, near;
+  std::vector<Index> near;
   std::vector<Vec3> sum;       // per node, dense: the boundary integral so far
   std::vector<char> seen;      // per node, dense
   std::vector<Index> nodes;    // the row's neighbours (sorted at the end)
@@ -230,7 +230,7 @@ struct SmoothedGradients::Row {
 
 SmoothedGradients::~SmoothedGradients() = default;
 
-SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const PointIndex& index) : index_(index) {
+SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const SupportIndex& index) : index_(index) {
   const Mesh& mesh = nodes.cells;
   KERF_CHECK(mesh.node_count() == nodes.size() && mesh.order == 1 && mesh.cell_count() > 0,
              "smoothed gradients need linear cells on the nodes (", mesh.node_count(), " cell nodes for ", nodes.size(),
@@ -254,7 +254,6 @@ SmoothedGradients::SmoothedGradients(const NodeSet& nodes, const PointIndex& ind
     }
     parts_start_.push_back(static_cast<Index>(parts_.size()));
   }
-  largest_support_ = *std::max_element(nodes.support.begin(), nodes.support.end());
   largest_radius_ = *std::max_element(radius_.begin(), radius_.end());
   on_cuts_.assign(nodes.size(), {});
 }
@@ -312,10 +311,7 @@ void SmoothedGradients::compute_row(Index I, const NodeSet& nodes, MlsBasis basi
   const int dim = nodes.dimension;
   if (row.sum.empty()) row.sum.assign(nodes.size(), Vec3::Zero()), row.seen.assign(nodes.size(), 0);
   auto covering = [&](const Vec3& x) {
-    index_.within(x, largest_support_, row.candidates);
-    row.near.clear();
-    for (Index K : row.candidates)
-      if ((x - nodes.positions[K]).norm() < nodes.support[K]) row.near.push_back(K);
+    index_.reaching(x, 0.0, row.near);
   };
   // The point is named only when its moment matrix is singular (no string per sample).
   auto evaluate = [&](const Vec3& x, bool at_node) {

@@ -23,7 +23,7 @@
 #include "discretization/enrichment/cut_weights.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
-#include "geometry/neighbor_search.h"
+#include "geometry/support_index.h"
 
 namespace kerf {
 
@@ -48,7 +48,7 @@ class SmoothedGradients {
  public:
   /// The boundary samples of every node's cell (nodes.cells must cover the
   /// nodes); `index`, a k-d tree over the nodes, must outlive this object.
-  SmoothedGradients(const NodeSet& nodes, const PointIndex& index);
+  SmoothedGradients(const NodeSet& nodes, const SupportIndex& index);
   ~SmoothedGradients();
 
   /// Takes in the pieces `cuts` has gained since the last call: samples on
@@ -78,7 +78,7 @@ class SmoothedGradients {
   void compute_rows(std::span<const Index> rows, const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
                     const std::string& context, const std::string& remedy, Store store) const;
 
-  const PointIndex& index_;
+  const SupportIndex& index_;
   std::unique_ptr<CellLocator> locator_;  // over nodes.cells, built at the first cut
   std::vector<Index> parts_start_{0};     // per node I: parts_[parts_start_[I] .. parts_start_[I + 1])
   std::vector<CellPart> parts_;
@@ -86,7 +86,7 @@ class SmoothedGradients {
   std::vector<std::vector<CellSample>> on_cuts_;  // per node: samples on the cuts' faces inside the cell
   std::vector<double> radius_;                    // per node: farthest point of its cell (m)
   std::vector<Index> pieces_done_;                // per cut: pieces taken in by set_cuts
-  double largest_support_ = 0.0, largest_radius_ = 0.0;
+  double largest_radius_ = 0.0;
 };
 
 }  // namespace kerf

@@ -5,10 +5,11 @@
 // differences; a support too small to invert is reported, not patched.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "discretization/meshless/mls_shape.h"
-#include "geometry/neighbor_search.h"
+#include "geometry/support_index.h"
 
 namespace kerf {
 namespace {
@@ -173,9 +174,9 @@ TEST(Mls, SupportTooSmallToInvertIsReported) {
 
 TEST(NeighborSearch, MatchesBruteForce) {
   NodeSet s = lattice(3, 0.1, 0.4);
-  PointIndex index(s.nodes);
+  SupportIndex index(s.nodes, s.radii);
   std::vector<Vec3> queries{Vec3(0.5, 0.5, 0.5), Vec3(0, 0, 0), Vec3(0.93, 0.11, 0.42), Vec3(2, 2, 2)};
-  NeighborLists lists = covering_supports(index, s.radii, queries);
+  NeighborLists lists = covering_supports(index, queries);
   ASSERT_EQ(lists.size(), static_cast<Index>(queries.size()));
   for (std::size_t q = 0; q < queries.size(); ++q) {
     std::vector<Index> expected;
@@ -188,6 +189,35 @@ TEST(NeighborSearch, MatchesBruteForce) {
   std::vector<Index> close;
   index.within(Vec3(0.5, 0.5, 0.5), 0.15, close);
   for (Index i : close) EXPECT_LT((s.nodes[i] - Vec3(0.5, 0.5, 0.5)).norm(), 0.15);
+}
+
+// Radii over five octaves (a graded set's supports): each radius group is
+// searched with its own largest radius, and the union must still be exact.
+TEST(NeighborSearch, GradedSupportsMatchBruteForce) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::vector<Vec3> nodes;
+  std::vector<double> radii;
+  for (int i = 0; i < 2000; ++i) {
+    nodes.emplace_back(unit(random), unit(random), unit(random));
+    radii.push_back(0.01 * std::pow(2.0, 5.0 * unit(random)));
+  }
+  SupportIndex index(nodes, radii);
+  std::vector<Index> found;
+  for (int q = 0; q < 200; ++q) {
+    const Vec3 x(unit(random), unit(random), unit(random));
+    const double extra = q % 2 ? 0.0 : 0.05 * unit(random);
+    std::vector<Index> reaching, near;
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      const double d = (x - nodes[i]).norm();
+      if (d < radii[i] + extra) reaching.push_back(static_cast<Index>(i));
+      if (d < 0.1) near.push_back(static_cast<Index>(i));
+    }
+    index.reaching(x, extra, found);
+    EXPECT_EQ(found, reaching) << q;
+    index.within(x, 0.1, found);
+    EXPECT_EQ(found, near) << q;
+  }
 }
 
 }  // namespace

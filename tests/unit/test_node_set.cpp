@@ -5,7 +5,7 @@
 
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
-#include "geometry/neighbor_search.h"
+#include "geometry/support_index.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -54,7 +54,7 @@ TEST(NodeSet, RefineBoxesGradeTheLatticeAndKeepTheVolume) {
     EXPECT_NEAR(graded.support[i], 2.2 * (in_region ? 0.0025 : 0.005), 1e-15) << graded.positions[i].transpose();
   }
   // No node twice.
-  PointIndex index(graded.positions);
+  SupportIndex index(graded.positions, graded.support);
   std::vector<Index> close;
   for (const Vec3& p : graded.positions) {
     index.within(p, 1e-6, close);
@@ -64,7 +64,7 @@ TEST(NodeSet, RefineBoxesGradeTheLatticeAndKeepTheVolume) {
   NeighborLists lists;
   std::vector<Vec3> samples;
   for (double x = 0.004; x < 0.036; x += 0.0031) samples.emplace_back(x, 0.02, 0.019);
-  lists = covering_supports(index, graded.support, samples);
+  lists = covering_supports(index, samples);
   for (Index q = 0; q < lists.size(); ++q) {
     std::vector<Vec3> nodes;
     std::vector<double> radii;

@@ -17,7 +17,7 @@ namespace {
 /// Sum of the weighted normals (must vanish: the cell is closed) and
 /// (1/dim) sum x . n dA, the enclosed measure (divergence theorem).
 void expect_closed_cells_of_nodal_volume(const NodeSet& nodes, const std::string& what) {
-  const PointIndex index(nodes.positions);
+  const SupportIndex index(nodes.positions, nodes.support);
   const SmoothedGradients smoothing(nodes, index);
   double largest_gap = 0.0, largest_volume_error = 0.0, total = 0.0;
   for (Index I = 0; I < nodes.size(); ++I) {

@@ -1,0 +1,44 @@
+#pragma once
+// Nodes with supports of their own radius, for "which supports reach x".
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "geometry/neighbor_search.h"
+
+namespace kerf {
+
+/// The nodes are grouped by support radius (within a factor 2 of each other)
+/// and each group is searched with its own largest radius: on a graded node
+/// set one search with the set's largest radius gathers, at a fine node,
+/// every node of the coarse levels around it (thousands, then sorted), which
+/// made EFG's set-up grow as the square of the node count.
+class SupportIndex {
+ public:
+  SupportIndex(std::vector<Vec3> positions, std::vector<double> radius);
+  ~SupportIndex();
+  SupportIndex(const SupportIndex&) = delete;
+  SupportIndex& operator=(const SupportIndex&) = delete;
+
+  /// The nodes I with |x - x_I| < radius[I] + extra, in increasing order
+  /// (extra = 0: the supports covering x).
+  void reaching(const Vec3& x, double extra, std::vector<Index>& out) const;
+  /// The nodes strictly closer than `distance` to x, in increasing order.
+  void within(const Vec3& x, double distance, std::vector<Index>& out) const;
+  const std::vector<Vec3>& positions() const { return positions_; }
+  const std::vector<double>& radius() const { return radius_; }
+  double largest_radius() const { return largest_; }
+
+ private:
+  struct Group;
+  std::vector<Vec3> positions_;
+  std::vector<double> radius_;
+  double largest_ = 0.0;
+  std::vector<Group> groups_;
+};
+
+/// For each query point x, the nodes I whose support covers it: |x - x_I| < radius[I].
+NeighborLists covering_supports(const SupportIndex& nodes, std::span<const Vec3> queries);
+
+}  // namespace kerf
