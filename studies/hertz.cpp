@@ -16,12 +16,26 @@
 //            block's size, not the resolution, sets the error.
 // Each method (fem tet4, fem tet10, efg, nodal integration with smoothed
 // gradients, and with the paper's direct ones) runs at several finest
-// spacings; the indentation error against Hertz is plotted against the node
-// count. Claims: every planned point runs; in full mode every method but
-// direct nodal is within 2% at its finest planned graded level, and better
-// than at its coarsest, and every uniform point stays more than 5% off (the
-// block sets the error); in quick mode within 6% (tet4 also falls from a/2 to
-// a/4). Direct nodal is reported only.
+// spacings a / n with n even (so each coarser lattice of the grading falls
+// on the finer one: the finest box's edge 1.5 a is a multiple of a / n); the
+// indentation error against Hertz is plotted against the node count.
+//
+// The converged answer is not Hertz's: tet10 at a / 4 and a / 6 agree to
+// 0.02% and sit 1.2% below Hertz, whose idealisations (a paraboloid for the
+// sphere, a half-space, small strain) are not this problem's. The reference is tet10 at its finest graded
+// level (a / 6), and each method's observed order is fitted to its error
+// against that reference over the levels where the error is larger than the
+// contact's own tolerance (0.1% of the travel: twice that).
+//
+// Claims (full): every planned point runs; the reference's last two levels
+// agree to 0.1%; every claimed method (all but direct nodal, reported only)
+// is within 2% of Hertz and within 1% of the reference at its finest level,
+// closer to Hertz than at its coarsest (smoothed nodal, which swings level by
+// level, instead within 1% of the reference at every level); tet4's order is at least 1; every
+// uniform point stays more than 5% off (the 8 a block sets the error); the
+// reference equals the one quick mode uses. Quick: each method's error
+// against that reference at a / 2 and a / 4 is what the full study measured
+// (to 0.05 points), and so is tet4's order between the two.
 #include <cmath>
 
 #include "studies/study_hertz_problem.h"
@@ -32,26 +46,186 @@ namespace {
 
 using namespace hertz;
 
-/// One method of the study and the finest spacings (a / n) it runs at.
+/// One method of the study and the finest spacings (a / n, n even) it runs at.
 struct Method {
   std::string label;
   MethodChoice discretization;
-  bool claimed;  // held to the bound (the paper's direct nodal gradients are reported only)
+  bool claimed;  // held to the bounds (the paper's direct nodal gradients are reported only)
+  bool monotone;  // closer to Hertz at its finest level than at its coarsest (smoothed nodal swings: not)
   std::vector<int> graded_full, graded_quick, uniform;
 };
+
+const std::vector<Method>& study_methods() {
+  // tet4 converges as h and needs a/12 for 2%; the others reach it at a/4.
+  static const std::vector<Method> methods{
+      {"fem_tet4", {"fem", "tet4"}, true, true, {2, 4, 6, 8, 12}, {2, 4}, {2, 3, 4}},
+      {"fem_tet10", {"fem", "tet10"}, true, true, {2, 4, 6}, {2}, {2}},
+      {"efg", {"efg"}, true, true, {2, 4, 6, 8}, {2, 4}, {2}},
+      {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, true, false, {2, 4, 6, 8}, {2, 4}, {2}},
+      {"nodal", {"nodal", "tet4", "direct"}, false, false, {2, 4, 6, 8}, {2}, {2}},
+  };
+  return methods;
+}
+
+// The reference (tet10 at a/6, from the full study) and what the full study
+// measured at the quick levels: the quick mode is held to them.
+constexpr double reference_indentation = 9.8814569445e-05;  // m
+constexpr const char* reference_method = "fem_tet10";
+struct QuickFigure {
+  const char* method;
+  int n;
+  double error_vs_reference;  // %
+};
+constexpr QuickFigure measured_at_quick_levels[] = {
+    {"fem_tet4", 2, -9.5074}, {"fem_tet4", 4, -3.3262},       {"fem_tet10", 2, -0.4443}, {"efg", 2, -2.1959},
+    {"efg", 4, -0.0464},      {"nodal_smoothed", 2, 0.0360}, {"nodal_smoothed", 4, 0.6739}, {"nodal", 2, -3.1216},
+};
+constexpr double quick_margin = 0.05;          // percentage points
+constexpr double contact_tolerance = 0.1;      // % of the travel a contact point may penetrate
+constexpr double fit_floor = 2.0 * contact_tolerance;
+
+const Json* find_point(const Json& points, const std::string& method, const std::string& family, int n) {
+  for (const Json& p : points)
+    if (p["method"] == method && p["family"] == family && p["a_over_h"] == n && p["status"] == "ok") return &p;
+  return nullptr;
+}
+
+/// Each method's observed order against the reference over the graded levels
+/// whose error is above the contact's tolerance (null below two such levels).
+Json observed_rates(const Json& points) {
+  Json rates = Json::object();
+  for (const Method& m : study_methods()) {
+    std::vector<double> h, error;
+    Json levels = Json::array();
+    for (const Json& p : points)
+      if (p["method"] == m.label && p["family"] == "graded" && p["status"] == "ok" &&
+          p["error_vs_reference_percent"].is_number() &&
+          std::abs(p["error_vs_reference_percent"].get<double>()) > fit_floor) {
+        h.push_back(p["spacing_m"]);
+        error.push_back(p["error_vs_reference_percent"]);
+        levels.push_back(p["a_over_h"]);
+      }
+    rates[m.label] = {{"order", h.size() >= 2 ? Json(observed_order(h, error)) : Json()}, {"levels", levels}};
+  }
+  return rates;
+}
+
+/// The claims of the full study (see the header).
+void check_full_claims(const Json& points, const Json& rates, double reference) {
+  const Method& tet10 = study_methods()[1];
+  const int last = tet10.graded_full.back(), before = tet10.graded_full[tet10.graded_full.size() - 2];
+  const double agreement =
+      percent_off((*find_point(points, reference_method, "graded", before))["indentation_m"], reference);
+  check_claim(std::abs(agreement) < 0.1, "the reference has converged: tet10 at a/" + std::to_string(before) +
+                                             " is within 0.1 % of a/" + std::to_string(last) + " (" +
+                                             std::to_string(agreement) + " %)");
+  check_claim(std::abs(percent_off(reference, reference_indentation)) < 1e-6,
+              "the reference equals the one quick mode uses (" + std::to_string(reference) +
+                  " m; update reference_indentation)");
+  for (const Method& d : study_methods()) {
+    if (!d.claimed) continue;
+    const Json& finest = *find_point(points, d.label, "graded", d.graded_full.back());
+    const Json& coarsest = *find_point(points, d.label, "graded", d.graded_full.front());
+    const double hertz_error = std::abs(finest["error_percent"].get<double>());
+    const double reference_error = std::abs(finest["error_vs_reference_percent"].get<double>());
+    const std::string at = d.label + " at its finest graded level a/" + finest["a_over_h"].dump();
+    check_claim(hertz_error < 2.0, at + " is within 2 % of Hertz (" + std::to_string(hertz_error) + " %)");
+    check_claim(reference_error < 1.0, at + " is within 1 % of the reference (" + std::to_string(reference_error) + " %)");
+    if (d.monotone) {
+      check_claim(hertz_error < std::abs(coarsest["error_percent"].get<double>()),
+                  d.label + " is closer to Hertz at a/" + finest["a_over_h"].dump() + " than at a/" +
+                      coarsest["a_over_h"].dump());
+      continue;
+    }
+    // Smoothed nodal swings about the reference level by level (measured
+    // +0.04 / +0.67 / -0.88 / -0.77 % at a/2 ... a/8): held within 1 % at each.
+    for (int n : d.graded_full) {
+      const double e = (*find_point(points, d.label, "graded", n))["error_vs_reference_percent"];
+      check_claim(std::abs(e) < 1.0, d.label + " at a/" + std::to_string(n) + " is within 1 % of the reference (" +
+                                         std::to_string(e) + " %)");
+    }
+  }
+  const Json& tet4 = rates["fem_tet4"]["order"];
+  check_claim(tet4.is_number() && tet4.get<double>() >= 1.0, "tet4's observed order is at least 1 (" + tet4.dump() + ")");
+  for (const Json& p : points)
+    if (p["family"] == "uniform")
+      check_claim(std::abs(p["error_percent"].get<double>()) > 5.0,
+                  p["method"].get<std::string>() + " on the uniform 8 a block at a/h = " + p["a_over_h"].dump() +
+                      " stays more than 5 % off Hertz (it is " + p["error_percent"].dump() + " %)");
+}
+
+/// Quick mode: the errors and orders at its levels are the full study's.
+void check_quick_claims(const Json& points) {
+  auto error_of = [&](const std::string& method, int n) {
+    const Json* p = find_point(points, method, "graded", n);
+    return p ? (*p)["error_vs_reference_percent"].get<double>() : NAN;
+  };
+  auto measured = [](const std::string& method, int n) {
+    for (const QuickFigure& q : measured_at_quick_levels)
+      if (q.method == method && q.n == n) return q.error_vs_reference;
+    return static_cast<double>(NAN);
+  };
+  for (const QuickFigure& q : measured_at_quick_levels) {
+    const double error = error_of(q.method, q.n);
+    check_claim(std::abs(error - q.error_vs_reference) < quick_margin,
+                std::string(q.method) + " at a/" + std::to_string(q.n) +
+                    " is off the reference by what the full study measured (" + std::to_string(error) +
+                    " % against " + std::to_string(q.error_vs_reference) + " %)");
+  }
+  // tet4's order: the meshless errors at a/4 are near the contact's tolerance,
+  // where an order is noise (their errors are held above).
+  const double order = std::log(error_of("fem_tet4", 2) / error_of("fem_tet4", 4)) / std::log(2.0);
+  const double full = std::log(measured("fem_tet4", 2) / measured("fem_tet4", 4)) / std::log(2.0);
+  check_claim(std::abs(order - full) < 0.05,
+              "tet4's order from a/2 to a/4 is the full study's (" + std::to_string(order) + " against " +
+                  std::to_string(full) + ")");
+}
+
+/// hertz.csv, hertz.json (the headline: each method's finest graded level) and the plot.
+void write_results(const StudyRunner& runner, const StudyOptions& options, const Json& points, const Json& rates,
+                   double reference) {
+  const std::vector<std::string> columns{"method",        "family", "spacing_m",     "a_over_h",
+                                         "nodes",         "dofs",   "indentation_m", "error_percent",
+                                         "error_vs_reference_percent", "setup_s", "solve_s", "run_s", "status"};
+  CsvTable table(runner.out_dir() + "/hertz.csv", columns);
+  for (const Json& p : points) {
+    std::vector<Json> row;
+    for (const std::string& c : columns) row.push_back(c == "status" && p[c] != "ok" ? Json("error") : p[c]);
+    table.row(row);
+  }
+  Json finest = Json::object();
+  for (const Json& p : points)
+    if (p["family"] == "graded" && p["status"] == "ok") finest[p["method"].get<std::string>()] = p;
+  Json headline = Json::array();
+  for (const auto& [method, p] : finest.items())
+    headline.push_back({{"what", method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " +
+                                     p["nodes"].dump() + " nodes (order " + rates[method]["order"].dump() + ")"},
+                        {"value", p["error_percent"]},
+                        {"unit", "%"}});
+  Json result = {{"study", "hertz"},
+                 {"headline", headline},
+                 {"plots", {"hertz.png"}},
+                 {"quick", options.quick},
+                 {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
+                            {"indentation_m", indentation()}, {"force_N", force()},
+                            {"young_Pa", young}, {"poisson", poisson}}},
+                 {"reference", {{"method", reference_method}, {"indentation_m", reference},
+                                {"off_hertz_percent", percent_off(reference, indentation())},
+                                {"from_quick_constant", options.quick}}},
+                 {"rates_against_reference", rates},
+                 {"fit_floor_percent", fit_floor},
+                 {"bound_percent", 2.0},
+                 {"finest_graded", finest},
+                 {"points", points}};
+  write_json(runner.out_dir() + "/hertz.json", result);
+  plot("hertz", runner.out_dir());
+}
 
 }  // namespace
 
 void hertz_study(const StudyOptions& options) {
-  // 1. What runs. tet4 converges as h and needs a/12 for 2%; the others reach
-  // it at a/4, where tet10 and EFG already take half a minute each.
-  const std::vector<Method> methods{
-      {"fem_tet4", {"fem", "tet4"}, true, {2, 4, 8, 12}, {2, 4}, {2, 3, 4}},
-      {"fem_tet10", {"fem", "tet10"}, true, {2, 4}, {2}, {2}},
-      {"efg", {"efg"}, true, {2, 4}, {2}, {2}},
-      {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, true, {2, 4}, {2}, {2}},
-      {"nodal", {"nodal", "tet4", "direct"}, false, {2, 4}, {2}, {2}},
-  };
+  // 1. What runs.
+  const std::vector<Method>& methods = study_methods();
   auto graded = [&](const Method& m) { return options.quick ? m.graded_quick : m.graded_full; };
   auto uniform = [&](const Method& m) { return options.quick ? std::vector<int>{} : m.uniform; };
   int planned = 0;
@@ -61,23 +235,20 @@ void hertz_study(const StudyOptions& options) {
              " N (a quarter of it on the quarter model)");
 
   // 2. Run every point; a failed run is recorded, not fatal.
-  CsvTable table(runner.out_dir() + "/hertz.csv", {"method", "family", "spacing_m", "a_over_h", "nodes", "dofs",
-                                                   "indentation_m", "error_percent", "setup_s", "solve_s", "status"});
   Json points = Json::array();
   auto record = [&](const Method& d, const std::string& family, int n, double h, const Json& summary) {
     const bool ok = summary.value("status", "") == "ok";
     const double depth = ok ? summary["probes"]["indent"]["indentation"].get<double>() : NAN;
-    const double error = 100.0 * (depth - indentation()) / indentation();
-    Json point = {{"method", d.label}, {"family", family}, {"spacing_m", h}, {"a_over_h", n},
-                  {"nodes", ok ? summary["counts"]["nodes"] : Json()}, {"dofs", ok ? summary["counts"]["dofs"] : Json()},
-                  {"indentation_m", ok ? Json(depth) : Json()}, {"error_percent", ok ? Json(error) : Json()},
-                  {"setup_s", ok ? summary["timing"]["setup_s"] : Json()},
-                  {"solve_s", ok ? summary["timing"]["solve_s"] : Json()},
-                  {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}};
-    std::vector<Json> row;
-    for (const auto& [key, value] : point.items()) row.push_back(key == "status" && !ok ? Json("error") : value);
-    table.row(row);
-    points.push_back(point);
+    points.push_back({{"method", d.label}, {"family", family}, {"spacing_m", h}, {"a_over_h", n},
+                      {"nodes", ok ? summary["counts"]["nodes"] : Json()},
+                      {"dofs", ok ? summary["counts"]["dofs"] : Json()},
+                      {"indentation_m", ok ? Json(depth) : Json()},
+                      {"error_percent", ok ? Json(percent_off(depth, indentation())) : Json()},
+                      {"error_vs_reference_percent", Json()},
+                      {"setup_s", ok ? summary["timing"]["setup_s"] : Json()},
+                      {"solve_s", ok ? summary["timing"]["solve_s"] : Json()},
+                      {"run_s", ok ? Json(whole_run_seconds(summary)) : Json()},
+                      {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}});
   };
   for (const Method& d : methods) {
     for (int n : graded(d)) {
@@ -90,62 +261,30 @@ void hertz_study(const StudyOptions& options) {
       record(d, "uniform", n, h, runner.run(label, scene(d.discretization, uniform_block, h, "")));
     }
   }
-
-  // 3. The headline: each method's error at its finest graded level.
-  Json finest = Json::object();
-  for (const Json& p : points)
-    if (p["family"] == "graded" && p["status"] == "ok") finest[p["method"].get<std::string>()] = p;
-  const double bound = options.quick ? 6.0 : 2.0;
-  Json headline = Json::array();
-  for (const auto& [method, p] : finest.items())
-    headline.push_back({{"what", method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " +
-                                     p["nodes"].dump() + " nodes"},
-                        {"value", p["error_percent"]},
-                        {"unit", "%"}});
-  Json result = {{"study", "hertz"},
-                 {"headline", headline},
-                 {"plots", {"hertz.png"}},
-                 {"quick", options.quick},
-                 {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
-                            {"indentation_m", indentation()}, {"force_N", force()},
-                            {"young_Pa", young}, {"poisson", poisson}}},
-                 {"bound_percent", bound},
-                 {"finest_graded", finest},
-                 {"points", points}};
-  write_json(runner.out_dir() + "/hertz.json", result);
-  plot("hertz", runner.out_dir());
-
-  // 4. The claims. Every planned point must have run: a crash at the finest
-  // level must not move the check to a coarser one.
   for (const Json& p : points)
     check_claim(p["status"] == "ok", p["method"].get<std::string>() + " " + p["family"].get<std::string>() +
                                          " at a/h = " + p["a_over_h"].dump() + " ran (" + p["status"].dump() + ")");
-  auto graded_error = [&](const std::string& method, int n) {
-    for (const Json& p : points)
-      if (p["method"] == method && p["family"] == "graded" && p["a_over_h"] == n)
-        return std::abs(p["error_percent"].get<double>());
-    return std::nan("");
-  };
-  for (const Method& d : methods) {
-    const std::string& m = d.label;
-    const int finest_n = graded(d).back(), coarsest_n = graded(d).front();
-    const double error = graded_error(m, finest_n);
-    runner.say(m + ": " + std::to_string(error) + " % at a/h = " + std::to_string(finest_n) +
+
+  // 3. The reference: tet10 at its finest level (full), the full study's value (quick).
+  const Method& tet10 = methods[1];
+  const double reference = options.quick ? reference_indentation
+                                         : (*find_point(points, reference_method, "graded", tet10.graded_full.back()))
+                                               ["indentation_m"].get<double>();
+  for (Json& p : points)
+    if (p["family"] == "graded") p["error_vs_reference_percent"] = percent_off(p["indentation_m"], reference);
+  const Json rates = observed_rates(points);
+  write_results(runner, options, points, rates, reference);
+
+  // 4. The claims.
+  for (const Method& d : methods)
+    runner.say(d.label + ": " + std::to_string((*find_point(points, d.label, "graded", graded(d).back()))
+                                                   ["error_percent"].get<double>()) +
+               " % off Hertz at a/" + std::to_string(graded(d).back()) + ", order " + rates[d.label]["order"].dump() +
                (d.claimed ? "" : ", reported only"));
-    if (!d.claimed) continue;
-    check_claim(error < bound, m + " indentation within " + std::to_string(bound) +
-                                   " % of Hertz at its finest graded level a/" + std::to_string(finest_n) +
-                                   " (it is " + std::to_string(error) + " %)");
-    if (finest_n != coarsest_n)
-      check_claim(error < graded_error(m, coarsest_n),
-                  m + " error falls from a/h = " + std::to_string(coarsest_n) + " to a/h = " + std::to_string(finest_n));
-  }
-  // The uniform 8 a block, not the resolution, sets the error of the paper's setting.
-  for (const Json& p : points)
-    if (p["family"] == "uniform")
-      check_claim(std::abs(p["error_percent"].get<double>()) > 5.0,
-                  p["method"].get<std::string>() + " on the uniform 8 a block at a/h = " + p["a_over_h"].dump() +
-                      " stays more than 5 % off Hertz (it is " + p["error_percent"].dump() + " %)");
+  if (options.quick)
+    check_quick_claims(points);
+  else
+    check_full_claims(points, rates, reference);
 }
 
 }  // namespace kerf
