@@ -15,7 +15,6 @@ struct SupportIndex::Group {
 SupportIndex::SupportIndex(std::vector<Vec3> positions, std::vector<double> radius)
     : positions_(std::move(positions)), radius_(std::move(radius)) {
   if (radius_.empty()) return;
-  largest_ = *std::max_element(radius_.begin(), radius_.end());
   const double smallest = *std::min_element(radius_.begin(), radius_.end());
   std::map<int, Group> by_octave;  // floor(log2(r / smallest)): radii within a factor 2
   for (Index I = 0; I < static_cast<Index>(radius_.size()); ++I) {

@@ -28,13 +28,11 @@ class SupportIndex {
   void within(const Vec3& x, double distance, std::vector<Index>& out) const;
   const std::vector<Vec3>& positions() const { return positions_; }
   const std::vector<double>& radius() const { return radius_; }
-  double largest_radius() const { return largest_; }
 
  private:
   struct Group;
   std::vector<Vec3> positions_;
   std::vector<double> radius_;
-  double largest_ = 0.0;
   std::vector<Group> groups_;
 };
 

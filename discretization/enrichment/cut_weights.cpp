@@ -11,13 +11,12 @@
 
 namespace kerf {
 
-CutWeights::CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support,
-                       const SupportIndex& index, double time)
+CutWeights::CutWeights(SharedCuts cuts, const SupportIndex& index, double time)
     : cuts_(std::move(cuts)),
       parts_(cuts_->cut_count()),
-      nodes_(nodes.begin(), nodes.end()),
-      support_(support.begin(), support.end()),
-      index_(index) {
+      index_(index),
+      nodes_(index.positions()),
+      support_(index.radius()) {
   advance_to(time);
 }
 

@@ -20,10 +20,9 @@ class EnrichmentGrid;
 /// other rules (baselines) are rebuilt and report the nodes the new pieces reach.
 class CutWeights final : public EnrichmentRule {
  public:
-  /// The scene's cuts (kept); nodes and support radii in metres; `index` is a
-  /// k-d tree over the nodes and must outlive this object.
-  CutWeights(SharedCuts cuts, std::span<const Vec3> nodes, std::span<const double> support, const SupportIndex& index,
-             double time);
+  /// The scene's cuts (kept); `index` holds the nodes and their support radii
+  /// (m) and must outlive this object.
+  CutWeights(SharedCuts cuts, const SupportIndex& index, double time);
   ~CutWeights() override;
 
   /// Is any piece of any cut present?
@@ -55,9 +54,9 @@ class CutWeights final : public EnrichmentRule {
 
   SharedCuts cuts_;
   std::vector<Part> parts_;  // one per cut
-  std::vector<Vec3> nodes_;
-  std::vector<double> support_;
   const SupportIndex& index_;
+  const std::vector<Vec3>& nodes_;      // index_'s
+  const std::vector<double>& support_;  // index_'s
 };
 
 }  // namespace kerf

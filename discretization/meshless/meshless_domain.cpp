@@ -46,7 +46,7 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
   index_ = std::make_unique<SupportIndex>(nodes_.positions, nodes_.support);
   growing_ = cuts->grows();
   if (cuts->cut_count() > 0)
-    enrichment_ = std::make_unique<CutWeights>(std::move(cuts), nodes_.positions, nodes_.support, *index_, 0.0);
+    enrichment_ = std::make_unique<CutWeights>(std::move(cuts), *index_, 0.0);
   if (growing_ && background_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)

@@ -47,7 +47,7 @@ struct CellSample {
 class SmoothedGradients {
  public:
   /// The boundary samples of every node's cell (nodes.cells must cover the
-  /// nodes); `index`, a k-d tree over the nodes, must outlive this object.
+  /// nodes); `index`, over the nodes and their supports, must outlive this object.
   SmoothedGradients(const NodeSet& nodes, const SupportIndex& index);
   ~SmoothedGradients();
 
