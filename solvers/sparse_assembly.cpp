@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 
 namespace kerf {
 
@@ -52,23 +53,27 @@ SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const Coup
   std::vector<char> kept(nodes, kept_nodes.empty() ? 1 : 0);
   for (Index a : kept_nodes) kept[a] = 1;
   std::vector<std::vector<Index>> adjacent(nodes);
+  ParallelFailure failure;  // the lists allocate
 #pragma omp parallel
   {
-    std::vector<Index> marked_by(nodes, -1);
+    std::vector<Index> marked_by;
+    failure.run([&] { marked_by.assign(nodes, -1); });
 #pragma omp for schedule(dynamic, 64)
-    for (Index a = 0; a < nodes; ++a) {
-      auto& list = adjacent[a];
-      list.push_back(a);  // the diagonal is always present
-      if (!kept[a]) continue;
-      marked_by[a] = a;
-      for (Index b : holding[a])
-        for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) {
-          const Index c = blocks.nodes[k];
-          if (marked_by[c] != a) marked_by[c] = a, list.push_back(c);
-        }
-      std::sort(list.begin(), list.end());
-    }
+    for (Index a = 0; a < nodes; ++a)
+      failure.run([&] {
+        auto& list = adjacent[a];
+        list.push_back(a);  // the diagonal is always present
+        if (!kept[a]) return;
+        marked_by[a] = a;
+        for (Index b : holding[a])
+          for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) {
+            const Index c = blocks.nodes[k];
+            if (marked_by[c] != a) marked_by[c] = a, list.push_back(c);
+          }
+        std::sort(list.begin(), list.end());
+      });
   }
+  failure.rethrow_if_failed();
   SparseMatrix m(n, n);
   Index nonzeros = 0;
   for (Index a = 0; a < nodes; ++a) nonzeros += static_cast<Index>(adjacent[a].size()) * dpn * dpn;

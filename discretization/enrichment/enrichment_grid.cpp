@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 
 namespace kerf {
 
@@ -25,19 +26,22 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
   size_lattice(padding);
   const bool grows =
       before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
+  ParallelFailure failure;
 #pragma omp parallel for schedule(static)
-  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c) {
-    const Vec3 x = column_point(c);
-    const Index old = grows ? column_in(*before, c) : -1;
-    if (old < 0) {
-      columns_[c] = column_at(x);
-      continue;
-    }
-    columns_[c] = before->columns_[old];
-    if (columns_[c].d_plus == 0.0) continue;  // over an earlier piece: it wins
-    const CutRegion added = cut_region(cut, before->pieces_, pieces_, frame_, x);
-    if (added.d_plus < columns_[c].d_plus) columns_[c] = column_of(added, x);
-  }
+  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c)
+    failure.run([&] {
+      const Vec3 x = column_point(c);
+      const Index old = grows ? column_in(*before, c) : -1;
+      if (old < 0) {
+        columns_[c] = column_at(x);
+        return;
+      }
+      columns_[c] = before->columns_[old];
+      if (columns_[c].d_plus == 0.0) return;  // over an earlier piece: it wins
+      const CutRegion added = cut_region(cut, before->pieces_, pieces_, frame_, x);
+      if (added.d_plus < columns_[c].d_plus) columns_[c] = column_of(added, x);
+    });
+  failure.rethrow_if_failed();
 }
 
 void EnrichmentGrid::size_lattice(double padding) {
@@ -83,12 +87,15 @@ Index EnrichmentGrid::column_in(const EnrichmentGrid& other, Index column) const
 std::vector<double> EnrichmentGrid::lattice_phi() const {
   const Index columns = static_cast<Index>(columns_.size()), along = count_[dim_ - 1];
   std::vector<double> phi(static_cast<std::size_t>(columns) * along);
+  ParallelFailure failure;
 #pragma omp parallel for schedule(static)
-  for (Index c = 0; c < columns; ++c) {
-    const Vec3 base = column_point(c);
-    for (Index k = 0; k < along; ++k)
-      phi[c + columns * k] = phi_in(columns_[c], base + (low_[dim_ - 1] + k * spacing_) * axes_[dim_ - 1]).value;
-  }
+  for (Index c = 0; c < columns; ++c)
+    failure.run([&] {
+      const Vec3 base = column_point(c);
+      for (Index k = 0; k < along; ++k)
+        phi[c + columns * k] = phi_in(columns_[c], base + (low_[dim_ - 1] + k * spacing_) * axes_[dim_ - 1]).value;
+    });
+  failure.rethrow_if_failed();
   return phi;
 }
 
@@ -193,12 +200,15 @@ std::vector<char> EnrichmentGrid::changed_columns(const EnrichmentGrid& before) 
   const Index columns = static_cast<Index>(columns_.size());
   std::vector<char> changed(columns, 0);
   const bool same_points = same_lattice(before);
+  ParallelFailure failure;
 #pragma omp parallel for schedule(static)
-  for (Index c = 0; c < columns; ++c) {
-    const Vec3 base = column_point(c);
-    const Index old = same_points ? column_in(before, c) : -1;
-    changed[c] = !same(columns_[c], old >= 0 ? before.columns_[old] : before.column_at(base), base);
-  }
+  for (Index c = 0; c < columns; ++c)
+    failure.run([&] {
+      const Vec3 base = column_point(c);
+      const Index old = same_points ? column_in(before, c) : -1;
+      changed[c] = !same(columns_[c], old >= 0 ? before.columns_[old] : before.column_at(base), base);
+    });
+  failure.rethrow_if_failed();
   // One column of dilation: a change narrower than the spacing still shows.
   std::vector<char> dilated(changed);
   const Index n0 = count_[0], n1 = dim_ == 3 ? count_[1] : 1;

@@ -1,5 +1,7 @@
 #include "discretization/enrichment/enrichment_rule.h"
 
+#include "core/parallel_failure.h"
+
 namespace kerf {
 
 void EnrichmentRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
@@ -9,8 +11,11 @@ void EnrichmentRule::factors(std::span<const Index> nodes, const Vec3& x, std::s
 std::vector<char> nodes_reached(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
                                 std::span<const double> support) {
   std::vector<char> reached(nodes.size(), 0);
+  ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 256)
-  for (std::size_t I = 0; I < nodes.size(); ++I) reached[I] = distance_to_cut(cut, 0, pieces, nodes[I]) < support[I];
+  for (std::size_t I = 0; I < nodes.size(); ++I)
+    failure.run([&] { reached[I] = distance_to_cut(cut, 0, pieces, nodes[I]) < support[I]; });
+  failure.rethrow_if_failed();
   return reached;
 }
 

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
 #include "discretization/prescribed_dofs.h"
@@ -111,6 +112,7 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
   using Work = ElementWork<Dim, Npc>;
   if (f) f->setZero(dof_count());
   double total_energy = 0.0;
+  ParallelFailure failure;  // a material law or the sink may throw
   // Phase by phase: the ranges of one phase share no node, so their forces and
   // blocks are written without atomics.
 #pragma omp parallel reduction(+ : total_energy)
@@ -121,50 +123,53 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
     for (const auto& phase : schedule_.phases) {
 #pragma omp for schedule(static, 1)
       for (std::size_t range = 0; range < phase.size(); ++range)
-      for (Index slot = phase[range].first; slot < phase[range].second; ++slot) {
-        const Index c = schedule_.cells[slot];
-        auto nodes = mesh_.cell(c);
-        Eigen::Matrix<double, Dim, Npc> U;
-        for (int a = 0; a < Npc; ++a)
-          for (int i = 0; i < Dim; ++i) {
-            work.dofs[Dim * a + i] = Dim * nodes[a] + i;
-            U(i, a) = u[Dim * nodes[a] + i];
-          }
-        work.force.setZero();
-        if (sink) work.stiffness.setZero();
-        for (int q = 0; q < nqp_; ++q) {
-          const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
-          Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
-          const double w = wdet_[point];
-          Mat3 F = Mat3::Identity();
-          F.template topLeftCorner<Dim, Dim>() += U * G;
-          if (sink)
-            law_.stress_and_tangent(F, P, dPdF);
-          else
-            P = law_.stress(F);
-          if (energy) total_energy += w * law_.energy(F);
-          Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
-          for (int a = 0; a < Npc; ++a)
-            for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
-          if (!sink) continue;
-          for (int b = 0; b < Npc; ++b)
-            for (int k = 0; k < Dim; ++k) {
-              // T(i, j) = sum_l dP(i,j)/dF(k,l) G(b,l)
-              Eigen::Matrix<double, Dim, Dim> T = Eigen::Matrix<double, Dim, Dim>::Zero();
-              for (int l = 0; l < Dim; ++l)
-                for (int j = 0; j < Dim; ++j)
-                  for (int i = 0; i < Dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * G(b, l);
-              Eigen::Matrix<double, Dim, Npc> column = T * G.transpose();
+        failure.run([&] {
+          for (Index slot = phase[range].first; slot < phase[range].second; ++slot) {
+            const Index c = schedule_.cells[slot];
+            auto nodes = mesh_.cell(c);
+            Eigen::Matrix<double, Dim, Npc> U;
+            for (int a = 0; a < Npc; ++a)
+              for (int i = 0; i < Dim; ++i) {
+                work.dofs[Dim * a + i] = Dim * nodes[a] + i;
+                U(i, a) = u[Dim * nodes[a] + i];
+              }
+            work.force.setZero();
+            if (sink) work.stiffness.setZero();
+            for (int q = 0; q < nqp_; ++q) {
+              const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
+              Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
+              const double w = wdet_[point];
+              Mat3 F = Mat3::Identity();
+              F.template topLeftCorner<Dim, Dim>() += U * G;
+              if (sink)
+                law_.stress_and_tangent(F, P, dPdF);
+              else
+                P = law_.stress(F);
+              if (energy) total_energy += w * law_.energy(F);
+              Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
               for (int a = 0; a < Npc; ++a)
-                for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
+                for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
+              if (!sink) continue;
+              for (int b = 0; b < Npc; ++b)
+                for (int k = 0; k < Dim; ++k) {
+                  // T(i, j) = sum_l dP(i,j)/dF(k,l) G(b,l)
+                  Eigen::Matrix<double, Dim, Dim> T = Eigen::Matrix<double, Dim, Dim>::Zero();
+                  for (int l = 0; l < Dim; ++l)
+                    for (int j = 0; j < Dim; ++j)
+                      for (int i = 0; i < Dim; ++i) T(i, j) += dPdF(i + 3 * j, k + 3 * l) * G(b, l);
+                  Eigen::Matrix<double, Dim, Npc> column = T * G.transpose();
+                  for (int a = 0; a < Npc; ++a)
+                    for (int i = 0; i < Dim; ++i) work.stiffness(Dim * a + i, Dim * b + k) += w * column(i, a);
+                }
             }
-        }
-        if (f)
-          for (int r = 0; r < Work::n; ++r) (*f)[work.dofs[r]] += work.force[r];
-        if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
-      }
+            if (f)
+              for (int r = 0; r < Work::n; ++r) (*f)[work.dofs[r]] += work.force[r];
+            if (sink) (*sink)(c, work.dofs, std::span<const double>(work.stiffness.data(), Work::n * Work::n));
+          }
+        });
     }
   }
+  failure.rethrow_if_failed();
   if (energy) *energy = total_energy;
 }
 

@@ -105,11 +105,11 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   const double* k = pairs_.stiffness.data();
   const Vec3* x = nodes.positions.data();
   f.resize(dofs);
+  // Sized here, not inside the region: an allocation failure must not be thrown in it.
+  thread_forces_.resize(static_cast<std::size_t>(omp_get_max_threads()) * dofs);
 #pragma omp parallel
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
-#pragma omp single
-    thread_forces_.resize(static_cast<std::size_t>(threads) * dofs);
     double* mine = thread_forces_.data() + static_cast<std::size_t>(thread) * dofs;
     std::fill(mine, mine + dofs, 0.0);
     // One pass over the nodes: F_I from the neighbours, then each neighbour's

@@ -135,12 +135,12 @@ void nodal_force_3d(const NodalForceTables& t, const MaterialLaw& law, const Vec
   scratch.u4.resize(4 * static_cast<std::size_t>(N) + 4);
   // 32-byte aligned starts inside the buffers (vector<double> guarantees 16).
   double* u4 = const_cast<double*>(aligned_32(scratch.u4));
+  // Sized here, not inside the region: an allocation failure must not be thrown in it.
+  const std::size_t stride = 4 * static_cast<std::size_t>(N);
+  scratch.forces4.resize(omp_get_max_threads() * stride + 4);
 #pragma omp parallel
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
-    const std::size_t stride = 4 * static_cast<std::size_t>(N);
-#pragma omp single
-    scratch.forces4.resize(threads * stride + 4);
     double* all = const_cast<double*>(aligned_32(scratch.forces4));
     double* mine = all + thread * stride;
     std::fill(mine, mine + stride, 0.0);

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <utility>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 
 namespace kerf {
 
@@ -211,14 +211,14 @@ void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedul
                            const BlockSink& sink, const BlockExtra& extra) {
   KERF_CHECK(!extra || schedule.group_size == 1, "internal: a method's extra terms need one point a group");
   const Index P = table.point_count();
-  std::exception_ptr failure;  // an exception must not leave an OpenMP region
+  ParallelFailure failure;
 #pragma omp parallel
   {
-    GroupBlock group;
+    GroupBlock group;  // empty until its first group: constructing it cannot throw
     for (const auto& colour : schedule.colours) {
 #pragma omp for schedule(dynamic, 1)
-      for (std::size_t c = 0; c < colour.size(); ++c) {
-        try {
+      for (std::size_t c = 0; c < colour.size(); ++c)
+        failure.run([&] {
           // No other thread writes these dofs now: this colour's cubes share no node.
           for (Index first : colour[c]) {
             const auto [begin, end] = group_points(first, schedule.group_size, P);
@@ -226,14 +226,10 @@ void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedul
             if (extra) extra(begin, group.block());
             sink(group.dofs(), group.block());
           }
-        } catch (...) {
-#pragma omp critical(kerf_meshless_failure)
-          if (!failure) failure = std::current_exception();
-        }
-      }
+        });
     }
   }
-  if (failure) std::rethrow_exception(failure);
+  failure.rethrow_if_failed();
 }
 
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 #include "discretization/meshless/mls_shape.h"
 
 namespace kerf {
@@ -53,19 +54,22 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
                const std::string& what, const std::string& context, const std::string& remedy) {
   Index failed = -1;
   filled.assign(count, 0);
+  ParallelFailure failure;
 #pragma omp parallel
   {
     PointShapes scratch;
 #pragma omp for schedule(dynamic, 16)
-    for (Index i = 0; i < count; ++i) {
-      const Index p = rows(i);
-      const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
-      filled[i] = result != Filled::unchanged;
-      if (result != Filled::singular) continue;
+    for (Index i = 0; i < count; ++i)
+      failure.run([&] {
+        const Index p = rows(i);
+        const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
+        filled[i] = result != Filled::unchanged;
+        if (result != Filled::singular) return;
 #pragma omp critical
-      if (failed < 0 || p < failed) failed = p;
-    }
+        if (failed < 0 || p < failed) failed = p;
+      });
   }
+  failure.rethrow_if_failed();
   if (failed < 0) return;
   const Index covering = static_cast<Index>(t.neighbours.of(failed).size());
   throw Error(singular_moment_message(t.dimension, basis, points[failed], covering, t.condition[failed], what, context,

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/point_location.h"
 
@@ -291,13 +292,17 @@ void SmoothedGradients::set_cuts(const CutWeights& cuts, const NodeSet& nodes) {
   // 40 halvings find a crossing to round-off on a segment; 5 quarterings follow it to 1/32 of a triangle.
   const int depth = nodes.dimension == 2 ? 40 : 5;
   const Index N = nodes.size();
+  ParallelFailure failure;
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index I = 0; I < N; ++I) {
     if (!crossed[I]) continue;
-    samples_[I].clear();
-    for (Index k = parts_start_[I]; k < parts_start_[I + 1]; ++k)
-      sample_part(parts_[k], &cuts, depth, samples_[I]);
+    failure.run([&] {
+      samples_[I].clear();
+      for (Index k = parts_start_[I]; k < parts_start_[I + 1]; ++k)
+        sample_part(parts_[k], &cuts, depth, samples_[I]);
+    });
   }
+  failure.rethrow_if_failed();
 }
 
 std::vector<CellSample> SmoothedGradients::samples_of(Index node) const {
@@ -349,24 +354,21 @@ void SmoothedGradients::compute_rows(std::span<const Index> rows, const NodeSet&
                                      const EnrichmentRule* enrichment, const std::string& context,
                                      const std::string& remedy, Store store) const {
   const Index count = static_cast<Index>(rows.size());
-  std::string failure;
+  ParallelFailure failure;
 #pragma omp parallel
   {
     Row row;
 #pragma omp for schedule(dynamic, 16)
     for (Index r = 0; r < count; ++r) {
-      try {
+      failure.run([&] {
         compute_row(rows[r], nodes, basis, enrichment, context, remedy, row);
         store(r, row);
-      } catch (const Error& e) {
-#pragma omp critical
-        if (failure.empty()) failure = e.what();
-      }
+      });
       // Leave the dense scratch clean for the next row.
       for (Index K : row.nodes) row.sum[K] = Vec3::Zero(), row.seen[K] = 0;
     }
   }
-  if (!failure.empty()) throw Error(failure);
+  failure.rethrow_if_failed();
 }
 
 ShapeTable SmoothedGradients::table(const NodeSet& nodes, MlsBasis basis, const EnrichmentRule* enrichment,
