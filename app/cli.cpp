@@ -10,6 +10,7 @@
 
 #include "app/run_scene.h"
 #include "core/check.h"
+#include "core/interrupt.h"
 #include "kerf/version.h"
 #include "problem/scene_json.h"
 #include "problem/scene_reader.h"
@@ -66,6 +67,7 @@ int study_command(const Arguments& a) {
   options.quick = a.quick;
   options.out_dir = a.out;
   options.quiet = a.quiet;
+  const InterruptScope interrupt;  // one for the whole study: a signal between its runs is kept
   try {
     run_study(a.target, options);
   } catch (const std::exception& e) {

@@ -1,7 +1,5 @@
 #include "app/run_scene.h"
 
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -11,6 +9,7 @@
 #include "app/run_parts.h"
 #include "app/summary_json.h"
 #include "core/check.h"
+#include "core/interrupt.h"
 #include "core/peak_memory.h"
 #include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
@@ -27,30 +26,17 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
-std::atomic<bool> interrupted{false};
-
-/// Ctrl-C sets a flag the step loop reads; the previous handler comes back
-/// however the run ends.
-class InterruptScope {
- public:
-  InterruptScope() : previous_(std::signal(SIGINT, [](int) { interrupted = true; })) { interrupted = false; }
-  ~InterruptScope() { std::signal(SIGINT, previous_); }
-  InterruptScope(const InterruptScope&) = delete;
-  InterruptScope& operator=(const InterruptScope&) = delete;
-
- private:
-  void (*previous_)(int);
-};
-
 /// The body, its mechanical system, stepper and probes, the initial state.
 RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, RunReport& report) {
   RunParts run;
   run.body = make_body(scene, cuts, report);
+  stop_if_interrupted("after the body was built (", run.body->node_count(), " nodes), before any step");
   run.mechanics = std::make_unique<MechanicalSystem>(*run.body, scene, report);
   run.probes = std::make_unique<ProbeSet>(scene, *run.mechanics);
   run.stepper = make_stepper(*run.mechanics, scene, report);
   RankCounts& parallel = report.parallel;
   parallel.memory.after_body = peak_memory_mb();
+  stop_if_interrupted("before the first assembly, with the body built");
   run.stepper->initialize(state);  // timed inside as assembly and factorize
   parallel.memory.after_initialization = peak_memory_mb();
   report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
@@ -82,8 +68,7 @@ void step(const Scene& scene, const SharedCuts& cuts, RunParts& run, SolverState
   const int output_every = every_step ? 1 : scene.output.vtk_every;
   observer.reset_loads(run, state);
   for (int i = 1; i <= steps; ++i) {
-    KERF_CHECK(!interrupted, "interrupted (Ctrl-C) at step ", i, " of ", steps,
-               "; the results written so far are complete and readable");
+    stop_if_interrupted("at step ", i, " of ", steps);
     observer.before_step(run, state);
     const double step_start = now_seconds();
     run.stepper->advance(state, dt);
@@ -146,7 +131,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     if (writes) write_file_atomically(summary_path, summary.dump(2));
   } catch (const std::exception& e) {
     write_report(report, summary);
-    summary["status"] = "error";
+    summary["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "error";
     summary["error"] = e.what();
     if (options.ranks.distributed()) summary["error_rank"] = options.ranks.rank;
     if (writes) write_file_atomically(summary_path, summary.dump(2));

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/interrupt.h"
 
 namespace kerf {
 namespace {
@@ -28,6 +29,7 @@ NewtonResult newton_solve(ImplicitSystem& system, const NewtonOptions& options, 
   NewtonResult result;
   double reference = force_scale;
   for (int iteration = 1;; ++iteration) {
+    stop_if_interrupted("at Newton iteration ", iteration, " of ", where);
     residual(u, r, true);
     double norm = free_norm(free, r);
     KERF_CHECK(std::isfinite(norm), where, ": the residual is NaN or infinite at Newton iteration ", iteration,

@@ -13,6 +13,7 @@
 
 #include "app/run_scene.h"
 #include "core/check.h"
+#include "core/interrupt.h"
 #include "core/timer.h"
 #include "output/atomic_file.h"
 #include "problem/scene_reader.h"
@@ -34,6 +35,7 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
     for (const std::string& o : overrides) header += " --set '" + o + "'";
     header += "\n";
   }
+  stop_if_interrupted("before the study's point ", label);
   write_file_atomically(scene_file, header + yaml);
   ++done_;
   const double start = now_seconds();
@@ -44,6 +46,8 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
     options.out_dir = out_ + "/runs/" + label;
     options.quiet = true;
     summary = run_scene(scene, options).summary;
+  } catch (const Interrupted&) {
+    throw;  // a signal stops the study, not only its point
   } catch (const std::exception& e) {
     summary = {{"status", "error"}, {"error", e.what()}};
   }
@@ -54,6 +58,7 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
 Json StudyRunner::run_on_ranks(const std::string& label, const std::string& yaml, int ranks, int threads) {
   const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
   const std::string run_dir = out_ + "/runs/" + label;
+  stop_if_interrupted("before the study's point ", label);
   write_file_atomically(scene_file, yaml);
   std::filesystem::remove_all(run_dir);
   ++done_;
@@ -73,6 +78,11 @@ Json StudyRunner::run_on_ranks(const std::string& label, const std::string& yaml
   std::ifstream in(run_dir + "/summary.json");
   if (in)
     summary = Json::parse(in, nullptr, false);
+  // Ctrl-C reaches mpirun and its ranks (one process group); a SIGTERM sent
+  // to the study alone is seen when the point ends.
+  stop_if_interrupted("in the study's point ", label, " (run on ", ranks, " ranks)");
+  if (summary.is_object() && summary.value("status", "") == "interrupted")
+    throw Interrupted(SIGINT, "in the study's point " + label + " (run on " + std::to_string(ranks) + " ranks)");
   if (!in || summary.is_discarded() || status != 0)
     summary = {{"status", "error"},
                {"error", command + " exited with " + std::to_string(status) + "; see " + run_dir + ".log"}};
