@@ -8,6 +8,7 @@
 #include <iostream>
 #include <thread>
 
+#include "app/resource_estimate.h"
 #include "app/run_scene.h"
 #include "core/check.h"
 #include "core/interrupt.h"
@@ -22,15 +23,16 @@ namespace {
 
 constexpr const char* usage =
     "usage:\n"
-    "  kerf run SCENE.yaml [--set KEY=VALUE]... [--out DIR] [--quiet]\n"
-    "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene\n"
+    "  kerf run SCENE.yaml [--set KEY=VALUE]... [--out DIR] [--quiet] [--force]\n"
+    "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene and its estimate\n"
+    "  (--force: run even when the estimated memory exceeds what the machine has)\n"
     "  kerf study [NAME] [--quick] [--out DIR] [--quiet]   the studies; no NAME lists them\n"
     "  kerf --version\n";
 
 struct Arguments {
   std::string command, target, out;
   std::vector<std::string> overrides;
-  bool quiet = false, quick = false;
+  bool quiet = false, quick = false, force = false;
 };
 
 Arguments parse(const std::vector<std::string>& args) {
@@ -48,6 +50,7 @@ Arguments parse(const std::vector<std::string>& args) {
     else if (s == "--out") a.out = value("--out");
     else if (s == "--quiet") a.quiet = true;
     else if (s == "--quick") a.quick = true;
+    else if (s == "--force") a.force = true;
     else if (s.rfind("--", 0) == 0) throw Error("unknown option '" + s + "'\n" + usage);
     else if (a.target.empty()) a.target = s;
     else throw Error("unexpected argument '" + s + "'\n" + usage);
@@ -130,6 +133,7 @@ int run_command_line(const std::vector<std::string>& args) {
     refuse_serial_solver_on_ranks(scene, ranks.count);
     if (a.command == "check") {
       std::cout << scene_to_json(scene).dump(2) << "\n";
+      if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene));
       return 0;
     }
   } catch (const std::exception& e) {
@@ -140,6 +144,7 @@ int run_command_line(const std::vector<std::string>& args) {
   try {
     RunOptions options;
     options.out_dir = a.out;
+    options.force = a.force;
     // Under mpirun every rank runs the scene; rank 0 alone prints and writes (but the series' pieces).
     options.quiet = a.quiet || ranks.rank != 0;
     options.ranks = ranks;

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "app/cut_follower.h"
+#include "app/resource_estimate.h"
 #include "app/run_observer.h"
 #include "app/run_parts.h"
 #include "app/summary_json.h"
@@ -114,6 +115,13 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
   try {
+    const ResourceEstimate estimate = estimate_resources(scene);
+    summary["estimate"] = estimate_to_json(estimate);
+    if (!options.force) refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
+    // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
+    if (!options.quiet && estimate.mesh_cells > 1e6)
+      std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
+                   scene.name.c_str(), estimate.mesh_cells);
     const double start = now_seconds();
     SolverState state;
     RunParts run = set_up(scene, cuts, state, report);

@@ -14,6 +14,7 @@ struct RunOptions {
   std::string out_dir;  // overrides output.dir when not empty
   bool quiet = false;
   RankShare ranks{};  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
+  bool force = false;  // run even when the resource estimate says the run cannot fit in memory
   bool writes_files() const { return ranks.rank == 0; }
 };
 

@@ -147,48 +147,14 @@ TEST(ExplicitIndentation, SettlesWithinTenPercentOfTheStaticAnswer) {
   EXPECT_LT(energy_error, 0.0) << "damping and contact may only take energy out";
 }
 
-// Hertz's block graded in eight nested boxes around the contact (the Hertz
-// study's a/2 level), with EFG on the very nodes of the graded tet mesh: the
-// input issue 20 found aborting on a fixed 512-dof block limit (since gone,
-// b2afd22; the case was never tested). It runs, and lands within 1% of the converged
-// tet10 reference of results/hertz (9.8815e-5 m; EFG on its own lattice is
-// 2.2% off at this level, on the mesh's nodes 0.5%).
-constexpr const char* graded_hertz_on_mesh_nodes = R"(
-name: hertz_mesh_nodes
-domain: {box: {min: [0, 0, 0], max: [0.384, 0.384, 0.384]}}
-material: {model: linear, young: 10000, poisson: 0.3}
-discretization:
-  method: efg
-  fem: {element: tet4, size: 0.128}
-  meshless: {nodes: mesh, spacing: 0.128, gradient: direct}
-  refine:
-    - {box: {min: [0, 0, 0.3825], max: [0.0015, 0.0015, 0.384]}, size: 0.0005}
-    - {box: {min: [0, 0, 0.381], max: [0.003, 0.003, 0.384]}, size: 0.001}
-    - {box: {min: [0, 0, 0.378], max: [0.006, 0.006, 0.384]}, size: 0.002}
-    - {box: {min: [0, 0, 0.372], max: [0.012, 0.012, 0.384]}, size: 0.004}
-    - {box: {min: [0, 0, 0.36], max: [0.024, 0.024, 0.384]}, size: 0.008}
-    - {box: {min: [0, 0, 0.336], max: [0.048, 0.048, 0.384]}, size: 0.016}
-    - {box: {min: [0, 0, 0.288], max: [0.096, 0.096, 0.384]}, size: 0.032}
-    - {box: {min: [0, 0, 0.192], max: [0.192, 0.192, 0.384]}, size: 0.064}
-boundary:
-  - {select: {plane: {axis: x, at: 0}}, fix: [x]}
-  - {select: {plane: {axis: y, at: 0}}, fix: [y]}
-  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}
-contact:
-  - sphere: {center: [0, 0, 0.394], radius: 0.01}
-    force: [0, 0, -0.0003663003663]
-solve: {analysis: static}
-output:
-  vtk: false
-  probes:
-    - {name: indent, contact: 0, field: indentation}
-)";
-
+// Hertz's block graded in eight nested boxes around the contact, EFG on the
+// very nodes of the graded tet mesh (scenes/hertz_graded.yaml): the input
+// issue 20 found aborting on a fixed 512-dof block limit (since gone,
+// b2afd22; the case was never tested). It runs, and lands within 1% of the
+// converged tet10 reference of results/hertz (EFG on its own lattice is 2.2%
+// off at this level, on the mesh's nodes 0.5%).
 TEST(GradedHertz, EfgOnTheGradedMeshNodesRunsAndMatchesTheReference) {
-  RunOptions options;
-  options.out_dir = testing::output_directory("GradedHertz_efg_mesh_nodes");
-  options.quiet = true;
-  const auto summary = run_scene(testing::scene_from_text(graded_hertz_on_mesh_nodes), options).summary;
+  const auto summary = testing::run_scene_file("scenes/hertz_graded.yaml", {}, "GradedHertz_efg_mesh_nodes");
   ASSERT_EQ(summary["status"], "ok");
   const double reference = 9.8814569445e-05;  // tet10 at a/6, results/hertz/hertz.json
   EXPECT_NEAR(summary["probes"]["indent"]["indentation"].get<double>(), reference, 0.01 * reference);

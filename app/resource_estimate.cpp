@@ -1,0 +1,326 @@
+#include "app/resource_estimate.h"
+
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "core/check.h"
+
+namespace kerf {
+namespace {
+
+// Fitted to gmsh's meshes of boxes (cells and vertices per h^d of volume and
+// per h^(d-1) of boundary) and to measured peak memory; the test holds them.
+constexpr double tets_per_volume = 4.5, tets_per_area = 1.0;
+constexpr double tet_vertices_per_volume = 0.63, tet_vertices_per_area = 1.0;
+constexpr double tris_per_area = 2.31, tris_per_length = 0.27;
+constexpr double tri_vertices_per_area = 1.15, tri_vertices_per_length = 0.64;
+constexpr double base_mb = 110.0;                // the libraries (VTK, PETSc, gmsh) and the process
+constexpr double gmsh_bytes_per_cell = 1500.0;   // gmsh's own structures while it meshes
+constexpr double shape_table_copies = 3.3;       // tables at points, nodes and boundary points, neighbour lists
+constexpr double smoothed_bytes_per_node = 45e3; // smoothing-cell samples and their shape functions
+constexpr double matrix_copies = 3.0;            // the pattern's indices, the full and the free-dof values
+constexpr double factor_fill_3d = 0.17;          // nnz(L) / nnz(K) per dofs^(1/3) (nested dissection)
+constexpr double factor_fill_2d = 0.4;           // nnz(L) / nnz(K) per log2(dofs)
+
+/// The size the scene asks for at x: the smallest refine box's holding x, or `size`.
+double size_at(const Scene& scene, double size, const Vec3& x) {
+  double h = size;
+  for (const RefineRegion& r : scene.discretization.refine)
+    if (r.size > 0.0 && r.box.contains(x, 0.0)) h = std::min(h, r.size);
+  return h;
+}
+
+/// The box cut at every refine box's faces along each axis: between two
+/// neighbouring cuts the size is constant.
+std::array<std::vector<double>, 3> size_cuts(const Scene& scene) {
+  const Box& box = *scene.box;
+  std::array<std::vector<double>, 3> cuts;
+  for (int i = 0; i < 3; ++i) {
+    cuts[i] = {box.min[i], box.max[i]};
+    if (i == 2 && scene.dimension == 2) break;
+    for (const RefineRegion& r : scene.discretization.refine)
+      for (double c : {r.box.min[i], r.box.max[i]}) cuts[i].push_back(std::clamp(c, box.min[i], box.max[i]));
+    std::sort(cuts[i].begin(), cuts[i].end());
+    cuts[i].erase(std::unique(cuts[i].begin(), cuts[i].end()), cuts[i].end());
+  }
+  if (scene.dimension == 2) cuts[2] = {0.0, 1.0};
+  return cuts;
+}
+
+/// The integral of h^-d over the domain (cells of the local size it holds)
+/// and of h^-(d-1) over its boundary, h piecewise constant as the refine
+/// boxes set it.
+struct SizeCounts {
+  double volume = 0.0, boundary = 0.0;
+};
+
+SizeCounts counts_of_size(const Scene& scene, double size) {
+  const int d = scene.dimension;
+  const auto cuts = size_cuts(scene);
+  SizeCounts n;
+  for (std::size_t a = 0; a + 1 < cuts[0].size(); ++a)
+    for (std::size_t b = 0; b + 1 < cuts[1].size(); ++b)
+      for (std::size_t c = 0; c + 1 < cuts[2].size(); ++c) {
+        const Vec3 lo(cuts[0][a], cuts[1][b], cuts[2][c]), hi(cuts[0][a + 1], cuts[1][b + 1], cuts[2][c + 1]);
+        const Vec3 extent = hi - lo;
+        const double h = size_at(scene, size, 0.5 * (lo + hi));
+        n.volume += (d == 3 ? extent.prod() : extent.x() * extent.y()) / std::pow(h, d);
+        // This cell's faces on the domain's boundary.
+        const std::size_t index[3] = {a, b, c};
+        for (int i = 0; i < d; ++i) {
+          const bool first = index[i] == 0, last = index[i] + 2 == cuts[i].size();
+          const double face = d == 3 ? extent.prod() / extent[i] : extent[1 - i];
+          n.boundary += (first + last) * face / std::pow(h, d - 1);
+        }
+      }
+  return n;
+}
+
+/// The cells of gmsh's transitions: outside each refine box the size grows
+/// linearly over twice the base size (box_mesher's Thickness) until it meets
+/// the size around the box; over a face of area A this holds about
+/// A * T / ((d-1)(h0 - h)) * (h^-(d-1) - h_out^-(d-1)) cells.
+double transition_cells(const Scene& scene, double size) {
+  const int d = scene.dimension;
+  const Box& domain = *scene.box;
+  double cells = 0.0;
+  for (const RefineRegion& r : scene.discretization.refine) {
+    if (!(r.size > 0.0 && r.size < size)) continue;
+    Box b{r.box.min.cwiseMax(domain.min), r.box.max.cwiseMin(domain.max)};
+    const Vec3 extent = b.max - b.min;
+    if ((extent.head(d).array() <= 0.0).any()) continue;
+    for (int i = 0; i < d; ++i)
+      for (int side = 0; side < 2; ++side) {
+        const double at = side ? b.max[i] : b.min[i];
+        if (at <= domain.min[i] || at >= domain.max[i]) continue;  // on the domain's boundary
+        Vec3 outside = 0.5 * (b.min + b.max);
+        outside[i] = at + (side ? 1.0 : -1.0) * 1e-9 * (1.0 + std::abs(at));
+        const double around = size_at(scene, size, outside);
+        if (around <= r.size) continue;
+        const double area = d == 3 ? extent.prod() / extent[i] : extent[1 - i];
+        const double thickness = 2.0 * size;
+        cells += area * thickness / ((d - 1) * (size - r.size)) *
+                 (std::pow(r.size, 1 - d) - std::pow(around, 1 - d));
+      }
+  }
+  return cells;
+}
+
+struct MeshCounts {
+  double cells = 0.0, nodes = 0.0;
+};
+
+MeshCounts mesh_counts(const Scene& scene, double size, int order) {
+  const SizeCounts n = counts_of_size(scene, size);
+  const double volume = n.volume + transition_cells(scene, size);
+  MeshCounts m;
+  if (scene.dimension == 3) {
+    m.cells = tets_per_volume * volume + tets_per_area * n.boundary;
+    m.nodes = tet_vertices_per_volume * volume + tet_vertices_per_area * n.boundary;
+    if (order == 2) m.nodes += 1.4 * m.cells;  // about 1.4 edges a tetrahedron
+  } else {
+    m.cells = tris_per_area * volume + tris_per_length * n.boundary;
+    m.nodes = tri_vertices_per_area * volume + tri_vertices_per_length * n.boundary;
+    if (order == 2) m.nodes += 1.5 * m.cells;
+  }
+  return m;
+}
+
+/// Points of a lattice at `spacing` over the box, faces included.
+double lattice_points(const Box& box, double spacing, int d) {
+  double n = 1.0;
+  for (int i = 0; i < d; ++i) n *= std::floor((box.max[i] - box.min[i]) / spacing + 1e-9) + 1.0;
+  return n;
+}
+
+double overlap_volume(const Box& a, const Box& b, int d) {
+  double v = 1.0;
+  for (int i = 0; i < d; ++i) v *= std::max(0.0, std::min(a.max[i], b.max[i]) - std::max(a.min[i], b.min[i]));
+  return v;
+}
+
+/// Nodes of the lattice at `spacing` with each refine box's own lattice
+/// (node_set.cpp): a box's points, less those a finer box's lattice holds
+/// too; the base's, less those inside the boxes.
+double lattice_nodes(const Scene& scene, double spacing) {
+  const int d = scene.dimension;
+  const Box& domain = *scene.box;
+  double nodes = lattice_points(domain, spacing, d);
+  const auto& refine = scene.discretization.refine;
+  for (const RefineRegion& r : refine) {
+    if (!(r.size > 0.0 && r.size < spacing)) continue;
+    const Box box{r.box.min.cwiseMax(domain.min), r.box.max.cwiseMin(domain.max)};
+    if (overlap_volume(box, box, d) <= 0.0) continue;
+    double own = lattice_points(box, r.size, d) - overlap_volume(box, box, d) / std::pow(spacing, d);
+    for (const RefineRegion& finer : refine)
+      if (finer.size > 0.0 && finer.size < r.size) own -= overlap_volume(box, finer.box, d) / std::pow(r.size, d);
+    nodes += std::max(0.0, own);
+  }
+  return nodes;
+}
+
+int points_per_cell(ElementType element) {
+  switch (element) {
+    case ElementType::tet4: return 1;
+    case ElementType::tet10: return 4;
+    case ElementType::tri3: return 1;
+    case ElementType::tri6: return 3;
+  }
+  return 1;
+}
+
+/// The body's counts: nodes, points, and the node pairs a matrix row couples.
+void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
+  const int d = scene.dimension;
+  const DiscretizationOptions& disc = scene.discretization;
+  const int order = element_kind(disc.fem.element).order;
+  if (disc.method == Method::fem) {
+    const MeshCounts m = mesh_counts(scene, disc.fem.size, order);
+    e.mesh_cells = m.cells, e.mesh_nodes = m.nodes, e.nodes = m.nodes;
+    e.points = m.cells * points_per_cell(disc.fem.element);
+    coupled = d == 3 ? (order == 1 ? 15.0 : 27.0) : (order == 1 ? 7.0 : 14.0);
+    e.size_key = "discretization.fem.size", e.size = disc.fem.size;
+    return;
+  }
+  const MeshlessOptions& o = disc.meshless;
+  const bool on_mesh_nodes = o.nodes == NodePlacement::mesh;
+  const bool loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
+                                 [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
+  MeshCounts background;
+  if (on_mesh_nodes)
+    background = mesh_counts(scene, disc.fem.size, order);
+  else if (disc.method == Method::efg || loads || !scene.contact.empty())
+    background = mesh_counts(scene, o.spacing, 1);
+  e.mesh_cells = background.cells, e.mesh_nodes = background.nodes;
+  e.nodes = on_mesh_nodes ? background.nodes : lattice_nodes(scene, o.spacing);
+  e.points = disc.method == Method::efg ? background.cells * std::pow(o.quadrature_order, d) : e.nodes;
+  // Nodes in a support, three quarters of a full ball's (the boundary's share, as measured).
+  const double ball = d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;
+  e.neighbors = 0.75 * ball;
+  coupled = std::pow(2.0, d) * e.neighbors;  // nodes sharing a point: within two supports
+  e.size_key = on_mesh_nodes ? "discretization.fem.size" : "discretization.meshless.spacing";
+  e.size = on_mesh_nodes ? disc.fem.size : o.spacing;
+}
+
+/// The Enrichment Grids: each cut's bounding box, padded by a support, at its grid spacing.
+double grid_points(const Scene& scene) {
+  if (scene.discretization.method == Method::fem) return 0.0;
+  const double pad = scene.discretization.meshless.support * scene.discretization.meshless.spacing;
+  double points = 0.0;
+  for (const Cut& cut : scene.cuts) {
+    if (cut.enrichment != Enrichment::grid || cut.vertices.empty()) continue;
+    Vec3 lo = cut.vertices.front(), hi = lo;
+    for (const Vec3& v : cut.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+    double n = 1.0;
+    for (int i = 0; i < scene.dimension; ++i) n *= (hi[i] - lo[i] + 2.0 * pad) / cut.grid_spacing + 1.0;
+    points += n;
+  }
+  return points;
+}
+
+int written_steps(const Scene& scene) {
+  if (scene.output.vtk_every <= 0) return 0;
+  if (scene.solve.analysis == Analysis::static_analysis) return scene.solve.load_steps + 1;
+  const double steps = std::max(1.0, std::round(scene.solve.duration / scene.solve.dt));
+  return static_cast<int>(std::min(steps / scene.output.vtk_every, 1e9)) + 1;
+}
+
+double memory_mb(const Scene& scene, const ResourceEstimate& e) {
+  const int d = scene.dimension;
+  double bytes = gmsh_bytes_per_cell * e.mesh_cells + 8.0 * e.mesh_cells * (d + 1) * 2.0;
+  bytes += shape_table_copies * e.points * e.neighbors * (8.0 * (1 + d) + 8.0);
+  if (scene.discretization.method == Method::nodal && scene.discretization.meshless.gradient == NodalGradient::smoothed)
+    bytes += smoothed_bytes_per_node * e.nodes;
+  bytes += matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros;
+  bytes += 64.0 * e.grid_points + 8.0 * 30.0 * e.dofs;  // the grid's columns; the state and work vectors
+  return base_mb + bytes / 1048576.0;
+}
+
+}  // namespace
+
+ResourceEstimate estimate_resources(const Scene& scene) {
+  ResourceEstimate e;
+  if (!scene.box) return e;  // a mesh file: its counts are in the file, not estimated here
+  const int d = scene.dimension;
+  double coupled = 0.0;
+  estimate_body(scene, e, coupled);
+  e.dofs = d * e.nodes;
+  if (scene.solve.solves_linear_systems()) {
+    e.nonzeros = e.dofs * d * coupled;
+    const bool direct = scene.solve.linear_solver == LinearSolverKind::cholmod ||
+                        scene.solve.linear_solver == LinearSolverKind::ldlt;
+    const double fill = d == 3 ? factor_fill_3d * std::cbrt(e.dofs) : factor_fill_2d * std::log2(e.dofs + 2.0);
+    if (direct) e.factor_nonzeros = e.nonzeros * std::max(1.0, fill);
+  }
+  e.grid_points = grid_points(scene);
+  // Each written step: positions, displacement, velocity, stress, von Mises... about 16 doubles a node.
+  e.output_mb_per_step = 16.0 * 8.0 * e.nodes / 1048576.0;
+  e.output_mb = e.output_mb_per_step * written_steps(scene);
+  e.memory_mb = memory_mb(scene, e);
+  return e;
+}
+
+std::string describe(const ResourceEstimate& e) {
+  std::ostringstream out;
+  out.precision(3);
+  if (e.size_key.empty()) return "estimate: none (the domain is a mesh file; its own counts decide)\n";
+  out << "estimate (from the scene, set by " << e.size_key << " = " << e.size << "):\n"
+      << "  mesh cells " << e.mesh_cells << ", mesh nodes " << e.mesh_nodes << "\n"
+      << "  nodes " << e.nodes << ", dofs " << e.dofs << ", quadrature points " << e.points;
+  if (e.neighbors > 0.0) out << ", neighbours a point " << e.neighbors;
+  out << "\n  matrix nonzeros " << e.nonzeros << ", factor nonzeros " << e.factor_nonzeros;
+  if (e.grid_points > 0.0) out << ", Enrichment Grid points " << e.grid_points;
+  out << "\n  output " << e.output_mb_per_step << " MB a written step, " << e.output_mb << " MB in all\n"
+      << "  peak memory " << e.memory_mb << " MB (available now: " << available_memory_mb() << " MB)\n";
+  return out.str();
+}
+
+nlohmann::ordered_json estimate_to_json(const ResourceEstimate& e) {
+  return {{"size_key", e.size_key},  {"size", e.size},        {"mesh_cells", e.mesh_cells},
+          {"mesh_nodes", e.mesh_nodes}, {"nodes", e.nodes},   {"dofs", e.dofs},
+          {"points", e.points},      {"neighbors", e.neighbors}, {"nonzeros", e.nonzeros},
+          {"factor_nonzeros", e.factor_nonzeros}, {"grid_points", e.grid_points},
+          {"output_mb_per_step", e.output_mb_per_step}, {"output_mb", e.output_mb}, {"memory_mb", e.memory_mb}};
+}
+
+double memory_limit_mb(const RankShare& ranks) {
+  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+  const int here = local ? std::max(1, std::atoi(local)) : ranks.count;
+  double limit = available_memory_mb() * std::max(1, ranks.count) / std::max(1, here);
+  // A user's own cap (a shared machine, a batch job's share).
+  if (const char* cap = std::getenv("KERF_MEMORY_LIMIT_MB")) {
+    char* end = nullptr;
+    const double mb = std::strtod(cap, &end);
+    KERF_CHECK(end != cap && *end == '\0' && mb > 0.0, "environment variable KERF_MEMORY_LIMIT_MB: value '", cap,
+               "' is not a number of megabytes; expected a positive number");
+    limit = limit > 0.0 ? std::min(limit, mb) : mb;
+  }
+  return limit;
+}
+
+double available_memory_mb() {
+  std::ifstream in("/proc/meminfo");
+  std::string key;
+  double kb = 0.0;
+  std::string unit;
+  while (in >> key >> kb >> unit)
+    if (key == "MemAvailable:") return kb / 1024.0;
+  return 0.0;  // unknown: nothing is refused
+}
+
+void refuse_what_cannot_fit(const Scene& scene, const ResourceEstimate& e, double limit_mb) {
+  if (e.size_key.empty() || limit_mb <= 0.0 || e.memory_mb <= limit_mb) return;
+  std::ostringstream why;
+  why.precision(3);
+  why << scene.locate(e.size_key).describe() << ": value " << e.size << " asks for about " << e.nodes << " nodes and "
+      << e.mesh_cells << " mesh cells, an estimated " << e.memory_mb << " MB of memory; the limit is "
+      << limit_mb << " MB (the memory available, or KERF_MEMORY_LIMIT_MB); expected a larger " << e.size_key << " (memory grows as its inverse "
+      << (scene.dimension == 3 ? "cube" : "square") << "), or --force to run anyway";
+  throw Error(why.str());
+}
+
+}  // namespace kerf
