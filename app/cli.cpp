@@ -132,7 +132,7 @@ int run_command_line(const std::vector<std::string>& args) {
     refuse_unrunnable(scene);
     refuse_serial_solver_on_ranks(scene, ranks.count);
     if (a.command == "check") {
-      std::cout << scene_to_json(scene).dump(2) << "\n";
+      std::cout << scene_to_json(scene).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
       if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene));
       return 0;
     }

@@ -27,6 +27,10 @@ namespace {
 
 using json = nlohmann::ordered_json;
 
+/// summary.json's text; bytes that are not UTF-8 (a path given on the command
+/// line, an error quoting one) become U+FFFD rather than stop the writing.
+std::string summary_text(const json& summary) { return summary.dump(2, ' ', false, json::error_handler_t::replace); }
+
 /// The body, its mechanical system, stepper and probes, the initial state.
 RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, RunReport& report) {
   RunParts run;
@@ -110,7 +114,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   resolved.output.dir = outcome.directory;
   json& summary = outcome.summary;
   summary = {{"kerf_version", version}, {"scene", scene_to_json(resolved)}, {"status", "running"}};
-  if (writes) write_file_atomically(summary_path, summary.dump(2));
+  if (writes) write_file_atomically(summary_path, summary_text(summary));
 
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
@@ -136,16 +140,16 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
     write_report(report, summary);
     summary["status"] = "ok";
-    if (writes) write_file_atomically(summary_path, summary.dump(2));
+    if (writes) write_file_atomically(summary_path, summary_text(summary));
   } catch (const std::exception& e) {
     write_report(report, summary);
     summary["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "error";
     summary["error"] = e.what();
     if (options.ranks.distributed()) summary["error_rank"] = options.ranks.rank;
-    if (writes) write_file_atomically(summary_path, summary.dump(2));
+    if (writes) write_file_atomically(summary_path, summary_text(summary));
     // Failing alone, this rank leaves rank 0 waiting in a collective: it must say it itself.
     if (!writes && options.ranks.distributed())
-      stop_every_rank(options.ranks, 1, e.what(), [&] { write_file_atomically(summary_path, summary.dump(2)); });
+      stop_every_rank(options.ranks, 1, e.what(), [&] { write_file_atomically(summary_path, summary_text(summary)); });
     throw;
   }
   return outcome;

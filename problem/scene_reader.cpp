@@ -4,6 +4,8 @@
 #include <fstream>
 #include <sstream>
 
+#include <yaml-cpp/depthguard.h>
+
 #include "core/check.h"
 #include "problem/scene_overrides.h"
 #include "problem/scene_validation.h"
@@ -304,6 +306,10 @@ Scene parse_scene(const std::string& yaml_text, const std::string& file, const s
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
+  } catch (const YAML::DeepRecursion& e) {
+    throw Error(file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
+                ": not valid YAML: lists or maps nested " + std::to_string(e.depth()) +
+                " deep (the YAML reader's limit); expected a scene's few levels");
   } catch (const YAML::ParserException& e) {
     throw Error(file + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1) +
                 ": not valid YAML: " + e.msg);

@@ -76,16 +76,21 @@ void validate_selection(const Refusal& r, const Selection& s, int dim, const std
 }
 
 void validate_domain(const Refusal& r, const Scene& s) {
-  r.require(!s.name.empty() && s.name.find('/') == std::string::npos, "name",
-            "value '" + s.name + "' is not a usable name; expected text without '/'");
+  // The name starts every output file's name (a file name holds 255 bytes).
+  r.require(!s.name.empty() && s.name.find('/') == std::string::npos && s.name.size() <= 200, "name",
+            "value '" + s.name.substr(0, 60) + (s.name.size() > 60 ? "...' (" + std::to_string(s.name.size()) +
+            " bytes)" : "'") + " is not a usable name; expected text without '/', at most 200 bytes");
   r.in_range(s.dimension == 2 || s.dimension == 3, "dimension", s.dimension, "2 or 3");
   r.require(s.box.has_value() != !s.mesh_file.empty(), "domain", "expected exactly one of box | mesh");
   if (s.box) {
     validate_box(r, *s.box, s.dimension, "domain.box");
     validate_box(r, *s.box, s.dimension, "domain.box", true);
   } else {
-    r.require(std::filesystem::is_regular_file(s.mesh_file), "domain.mesh",
-              "file '" + s.mesh_file + "' does not exist or is not a file");
+    // Not a directory, FIFO or device (reading /dev/zero or a FIFO never ends); a symlink loop says so.
+    std::error_code why;
+    const bool file = std::filesystem::is_regular_file(s.mesh_file, why);
+    r.require(file, "domain.mesh",
+              "file '" + s.mesh_file + "' does not exist or is not a file" + (why ? " (" + why.message() + ")" : ""));
   }
 }
 
@@ -219,12 +224,19 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
             "cut that does not turn");
 }
 
+constexpr double max_steps = 1e9;
+
 void validate_solve(const Refusal& r, const SolveOptions& s) {
   r.in_range(s.dt > 0.0, "solve.dt", s.dt, "dt > 0 (s)");
   r.in_range(s.duration > 0.0, "solve.duration", s.duration, "duration > 0 (s)");
   r.in_range(s.analysis != Analysis::dynamic || s.dt <= s.duration, "solve.dt", s.dt,
              "dt <= duration (" + number_text(s.duration) + " s)");
-  r.in_range(s.load_steps >= 1, "solve.load_steps", s.load_steps, "load_steps >= 1");
+  // A step count past a billion (an int's range is 2.1e9) is a typo, not a run.
+  r.in_range(s.analysis != Analysis::dynamic || s.duration / s.dt <= max_steps, "solve.dt", s.dt,
+             "at most " + number_text(max_steps) + " steps over duration " + number_text(s.duration) + " s, dt >= " +
+                 number_text(s.duration / max_steps) + " s");
+  r.in_range(s.load_steps >= 1 && s.load_steps <= max_steps, "solve.load_steps", s.load_steps,
+             "1 <= load_steps <= " + number_text(max_steps));
   r.in_range(s.newton.tolerance > 0.0 && s.newton.tolerance < 1.0, "solve.newton.tolerance", s.newton.tolerance,
              "0 < tolerance < 1 (relative residual)");
   r.in_range(s.newton.max_iterations >= 1, "solve.newton.max_iterations", s.newton.max_iterations,

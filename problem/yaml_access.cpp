@@ -78,10 +78,16 @@ void YamlField::fail(const std::string& problem) const {
 std::string YamlField::value_text() const {
   if (!node_) return "nothing (the key is missing)";
   if (node_.IsNull()) return "null";
-  if (node_.IsScalar()) return "'" + node_.Scalar() + "'";
+  // A message quotes at most the first 160 bytes of a value (a scalar of
+  // megabytes, a flow of thousands of items).
+  auto shortened = [](const std::string& text) {
+    if (text.size() <= 200) return text;
+    return text.substr(0, 160) + "... (" + std::to_string(text.size()) + " bytes)";
+  };
+  if (node_.IsScalar()) return "'" + shortened(node_.Scalar()) + "'";
   YAML::Emitter out;
   out << YAML::Flow << node_;
-  return out.c_str();
+  return shortened(out.c_str());
 }
 
 void YamlField::out_of_range(const std::string& expected) const {
@@ -157,8 +163,35 @@ bool YamlField::boolean() const {
   }
 }
 
+namespace {
+
+/// Whether `s` is well-formed UTF-8 (no overlong forms, surrogates or code
+/// points past U+10FFFF): names and paths go into summary.json, which must be.
+bool valid_utf8(const std::string& s) {
+  for (std::size_t i = 0; i < s.size();) {
+    const auto c = static_cast<unsigned char>(s[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    const int extra = c >= 0xC2 && c <= 0xDF ? 1 : c >= 0xE0 && c <= 0xEF ? 2 : c >= 0xF0 && c <= 0xF4 ? 3 : -1;
+    if (extra < 0 || i + extra >= s.size()) return false;
+    const auto next = static_cast<unsigned char>(s[i + 1]);
+    const unsigned char low = c == 0xE0 ? 0xA0 : c == 0xF0 ? 0x90 : 0x80;
+    const unsigned char high = c == 0xED ? 0x9F : c == 0xF4 ? 0x8F : 0xBF;
+    if (next < low || next > high) return false;
+    for (int k = 2; k <= extra; ++k)
+      if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return false;
+    i += 1 + extra;
+  }
+  return true;
+}
+
+}  // namespace
+
 std::string YamlField::text() const {
   if (!node_ || !node_.IsScalar()) fail("expected a string, found " + value_text());
+  if (!valid_utf8(node_.Scalar())) fail("the text is not valid UTF-8; expected UTF-8 text");
   return node_.Scalar();
 }
 

@@ -1,6 +1,9 @@
 // The scene contract: defaults, --set overrides, and refusals that name the
 // file, line, key, value and what was expected.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <filesystem>
 
 #include "core/check.h"
 #include "problem/scene_json.h"
@@ -49,6 +52,22 @@ TEST(SceneReader, NodalDefaultsToExplicitDynamicsAtOneMillisecond) {
 TEST(SceneReader, TwoDimensionalScenesDefaultToTriangles) {
   Scene s = testing::scene_from_text("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}");
   EXPECT_EQ(s.discretization.fem.element, ElementType::tri3);
+}
+
+// Mesh paths that are not files: a FIFO (opening it would wait forever), a
+// symlink loop (the file system's error once escaped naming no key).
+TEST(SceneReader, MeshPathsThatAreNotFilesAreRefusedByKey) {
+  const std::filesystem::path dir = testing::output_directory("hostile_mesh_paths");
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  ASSERT_EQ(::mkfifo((dir / "pipe.msh").c_str(), 0600), 0);
+  std::filesystem::create_symlink(dir / "loop_a.msh", dir / "loop_b.msh");
+  std::filesystem::create_symlink(dir / "loop_b.msh", dir / "loop_a.msh");
+  for (const std::string name : {"pipe.msh", "loop_a.msh"}) {
+    const std::string m = refusal("domain: {mesh: " + (dir / name).string() + "}\n");
+    expect_contains(m, "key 'domain.mesh': file '" + (dir / name).string() + "' does not exist or is not a file");
+  }
+  expect_contains(refusal("domain: {mesh: " + (dir / "loop_a.msh").string() + "}\n"), "symbolic links");
 }
 
 TEST(SceneReader, UnknownKeyNamesLineAndSuggestion) {
