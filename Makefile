@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS ?= 2
 
-.PHONY: all deps configure build run test bench clean
+.PHONY: all deps configure build run test bench fuzz check-sanitize clean
 
 all: build
 
@@ -24,5 +24,15 @@ test: build
 bench: build
 	@$(BUILD)/tests/kerf_benchmarks
 
+# Slow checks, not part of `make test`: libFuzzer on the scene and mesh
+# readers (FUZZ_SECONDS each, default 600; clang-16, in build-fuzz), and the
+# unit, regression and malformed tests under ASan + UBSan (build-sanitize).
+FUZZ_SECONDS ?= 600
+fuzz:
+	@scripts/fuzz.sh $(FUZZ_SECONDS)
+
+check-sanitize:
+	@scripts/check_sanitize.sh
+
 clean:
-	rm -rf $(BUILD)
+	rm -rf $(BUILD) build-sanitize build-fuzz

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Installs the Debian packages kerf builds and runs with; does nothing when all are present.
+# Installs the Debian packages kerf builds and runs with, and any named as
+# arguments (make fuzz: clang's); does nothing when all are present.
 set -euo pipefail
 packages=(
   build-essential cmake pkg-config
@@ -7,6 +8,7 @@ packages=(
   libgmsh-dev gmsh libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libnanoflann-dev
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,41 @@
+// libFuzzer target: mesh files, through read_msh as a scene's domain.mesh is
+// read (gmsh in a child process, so that gmsh's own crashes on malformed
+// files end in a message), then the checks kerf makes on what comes back.
+// Every bad file must end in kerf::Error; a mesh that comes back must be
+// whole (every cell's nodes exist). Any other exception, a crash or a
+// sanitizer report in this process is a finding.
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <string>
+
+#include "core/check.h"
+#include "geometry/msh_reader.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const std::string path = "/tmp/kerf_fuzz_" + std::to_string(::getpid()) + ".msh";
+  {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
+  }
+  for (int dimension : {3, 2}) {
+    try {
+      const kerf::Mesh mesh = kerf::read_msh(path, dimension);
+      const auto nodes = static_cast<kerf::Index>(mesh.nodes.size());
+      for (kerf::Index n : mesh.cells)
+        if (n < 0 || n >= nodes) {
+          std::fprintf(stderr, "read_msh returned a cell with node %lld of %lld\n", static_cast<long long>(n),
+                       static_cast<long long>(nodes));
+          std::abort();
+        }
+    } catch (const kerf::Error&) {
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "not a kerf::Error: %s\n", e.what());
+      std::abort();
+    }
+  }
+  return 0;
+}
