@@ -121,6 +121,19 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   try {
     const ResourceEstimate estimate = estimate_resources(scene);
     summary["estimate"] = estimate_to_json(estimate);
+    // A signal the run cannot honour in time (in gmsh, in a factorization): the summary says so.
+    const std::string last_summary_path = writes ? summary_path : "";
+    const InterruptLastWords last_words([last_summary_path, summary](int signal) mutable {
+      if (last_summary_path.empty()) return;
+      summary["status"] = "interrupted";
+      summary["error"] = std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") +
+                         ") in the set-up or a solve, which could not stop within " +
+                         std::to_string(static_cast<int>(interrupt_grace_seconds)) + " s; stopped at once";
+      try {
+        write_file_atomically(last_summary_path, summary_text(summary));
+      } catch (...) {  // the process ends now whatever happens
+      }
+    });
     if (!options.force) refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
     // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
     if (!options.quiet && estimate.mesh_cells > 1e6)
