@@ -31,6 +31,34 @@ using json = nlohmann::ordered_json;
 /// line, an error quoting one) become U+FFFD rather than stop the writing.
 std::string summary_text(const json& summary) { return summary.dump(2, ' ', false, json::error_handler_t::replace); }
 
+/// Puts the resource estimate in the summary and refuses a run that cannot fit (unless forced).
+void estimate_and_guard(const Scene& scene, const RunOptions& options, json& summary) {
+  const ResourceEstimate estimate = estimate_resources(scene);
+  summary["estimate"] = estimate_to_json(estimate);
+  if (!options.force) refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
+  // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
+  if (!options.quiet && estimate.mesh_cells > 1e6)
+    std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
+                 scene.name.c_str(), estimate.mesh_cells);
+}
+
+/// The watchdog's last words when a signal cannot be honoured in time (in
+/// gmsh, in a factorization): `summary` written to `path` ("" writes
+/// nothing: another rank writes), saying the run was stopped at once.
+std::function<void(int)> summary_saying_interrupted(const std::string& path, json summary) {
+  return [path, summary](int signal) mutable {
+    if (path.empty()) return;
+    summary["status"] = "interrupted";
+    summary["error"] = std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") +
+                       ") in the set-up or a solve, which could not stop within " +
+                       std::to_string(static_cast<int>(interrupt_grace_seconds)) + " s; stopped at once";
+    try {
+      write_file_atomically(path, summary_text(summary));
+    } catch (...) {  // the process ends now whatever happens
+    }
+  };
+}
+
 /// The body, its mechanical system, stepper and probes, the initial state.
 RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, RunReport& report) {
   RunParts run;
@@ -119,26 +147,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
   try {
-    const ResourceEstimate estimate = estimate_resources(scene);
-    summary["estimate"] = estimate_to_json(estimate);
-    // A signal the run cannot honour in time (in gmsh, in a factorization): the summary says so.
-    const std::string last_summary_path = writes ? summary_path : "";
-    const InterruptLastWords last_words([last_summary_path, summary](int signal) mutable {
-      if (last_summary_path.empty()) return;
-      summary["status"] = "interrupted";
-      summary["error"] = std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") +
-                         ") in the set-up or a solve, which could not stop within " +
-                         std::to_string(static_cast<int>(interrupt_grace_seconds)) + " s; stopped at once";
-      try {
-        write_file_atomically(last_summary_path, summary_text(summary));
-      } catch (...) {  // the process ends now whatever happens
-      }
-    });
-    if (!options.force) refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
-    // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
-    if (!options.quiet && estimate.mesh_cells > 1e6)
-      std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
-                   scene.name.c_str(), estimate.mesh_cells);
+    estimate_and_guard(scene, options, summary);
+    const InterruptLastWords last_words(summary_saying_interrupted(writes ? summary_path : "", summary));
     const double start = now_seconds();
     SolverState state;
     RunParts run = set_up(scene, cuts, state, report);
