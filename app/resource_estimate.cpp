@@ -199,11 +199,30 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   e.nodes = on_mesh_nodes ? background.nodes : lattice_nodes(scene, o.spacing);
   e.points = disc.method == Method::efg ? background.cells * std::pow(o.quadrature_order, d) : e.nodes;
   // Nodes in a support, three quarters of a full ball's (the boundary's share, as measured).
-  const double ball = d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;
+  const double ball =
+      d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;
   e.neighbors = 0.75 * ball;
   coupled = std::pow(2.0, d) * e.neighbors;  // nodes sharing a point: within two supports
   e.size_key = on_mesh_nodes ? "discretization.fem.size" : "discretization.meshless.spacing";
   e.size = on_mesh_nodes ? disc.fem.size : o.spacing;
+}
+
+/// When one refine box holds most of the cells, its size is what to change:
+/// the key names it (discretization.refine.N.size), not the base size.
+void blame_the_finest_share(const Scene& scene, ResourceEstimate& e) {
+  const int d = scene.dimension;
+  const double total = counts_of_size(scene, e.size).volume;
+  const auto& refine = scene.discretization.refine;
+  for (std::size_t i = 0; i < refine.size(); ++i) {
+    const RefineRegion& r = refine[i];
+    if (!(r.size > 0.0 && r.size < e.size)) continue;
+    const Box box{r.box.min.cwiseMax(scene.box->min), r.box.max.cwiseMin(scene.box->max)};
+    if (overlap_volume(box, box, d) / std::pow(r.size, d) > 0.5 * total) {
+      e.size_key = "discretization.refine." + std::to_string(i) + ".size";
+      e.size = r.size;
+      return;
+    }
+  }
 }
 
 /// The Enrichment Grids: each cut's bounding box, padded by a support, at its grid spacing.
@@ -248,6 +267,7 @@ ResourceEstimate estimate_resources(const Scene& scene) {
   const int d = scene.dimension;
   double coupled = 0.0;
   estimate_body(scene, e, coupled);
+  blame_the_finest_share(scene, e);
   e.dofs = d * e.nodes;
   if (scene.solve.solves_linear_systems()) {
     e.nonzeros = e.dofs * d * coupled;
@@ -318,7 +338,8 @@ void refuse_what_cannot_fit(const Scene& scene, const ResourceEstimate& e, doubl
   why.precision(3);
   why << scene.locate(e.size_key).describe() << ": value " << e.size << " asks for about " << e.nodes << " nodes and "
       << e.mesh_cells << " mesh cells, an estimated " << e.memory_mb << " MB of memory; the limit is "
-      << limit_mb << " MB (the memory available, or KERF_MEMORY_LIMIT_MB); expected a larger " << e.size_key << " (memory grows as its inverse "
+      << limit_mb << " MB (the memory available, or KERF_MEMORY_LIMIT_MB); expected a larger " << e.size_key
+      << " (memory grows as its inverse "
       << (scene.dimension == 3 ? "cube" : "square") << "), or --force to run anyway";
   throw Error(why.str());
 }
