@@ -1,12 +1,16 @@
 #include "geometry/msh_reader.h"
 
 #include <gmsh.h>
+#include <poll.h>
+#include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 
 #include "core/check.h"
@@ -29,7 +33,16 @@ void write_all(int fd, const void* data, std::size_t bytes) {
   }
 }
 
+/// A crash in gmsh ends this child alone and the parent reports it: crash
+/// handlers inherited from the parent (a sanitizer's, a fuzzer's) would
+/// report it as the parent's own. The child dies with the parent.
+void become_a_disposable_child() {
+  for (int signal : {SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT, SIGINT, SIGTERM}) std::signal(signal, SIG_DFL);
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+}
+
 [[noreturn]] void child_read(const std::string& path, int dimension, int fd) {
+  become_a_disposable_child();
   std::string error;
   Mesh mesh;
   bool read = false;
@@ -63,6 +76,35 @@ void write_all(int fd, const void* data, std::size_t bytes) {
   ::_exit(0);
 }
 
+/// The child's whole answer; a child still reading after a minute plus a
+/// minute per 100 MB of file is killed (gmsh can loop on a malformed file).
+std::string answer_within_deadline(int fd, pid_t child, const std::string& path) {
+  std::error_code ignored;
+  const double megabytes = static_cast<double>(std::filesystem::file_size(path, ignored)) / 1e6;
+  const double limit = 60.0 + 0.6 * (ignored ? 0.0 : megabytes);
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(limit);
+  std::string message;
+  char buffer[1 << 16];
+  for (;;) {
+    pollfd ready{fd, POLLIN, 0};
+    const int polled = ::poll(&ready, 1, 1000);  // a second at a time
+    if (polled < 0 && errno == EINTR) continue;
+    if (polled == 0) {
+      if (std::chrono::steady_clock::now() < deadline) continue;
+      ::kill(child, SIGKILL);
+      while (::waitpid(child, nullptr, 0) < 0 && errno == EINTR) {
+      }
+      throw Error(path + ": gmsh was still reading this file after " + std::to_string(static_cast<int>(limit)) +
+                  " s (stopped): the mesh file is malformed or far larger than it looks");
+    }
+    const ssize_t n = ::read(fd, buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    message.append(buffer, static_cast<std::size_t>(n));
+  }
+  return message;
+}
+
 /// Cheap checks before gmsh sees the file.
 void precheck(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -88,14 +130,7 @@ Mesh read_msh(const std::string& path, int dimension) {
     child_read(path, dimension, fds[1]);
   }
   ::close(fds[1]);
-  std::string message;
-  char buffer[1 << 16];
-  for (;;) {
-    ssize_t n = ::read(fds[0], buffer, sizeof buffer);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) break;
-    message.append(buffer, static_cast<std::size_t>(n));
-  }
+  const std::string message = answer_within_deadline(fds[0], pid, path);
   ::close(fds[0]);
   int status = 0;
   while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
