@@ -98,7 +98,11 @@ void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
   if (!node_.IsMap()) fail("expected a map with keys, found " + value_text());
   std::vector<std::string> seen;
   for (const auto& entry : node_) {
-    std::string name = entry.first.as<std::string>();
+    // A key must be text: `[1, 2]: x` or `{a: 1}: x` (a comma or brace out of place) is refused here.
+    if (!entry.first.IsScalar())
+      YamlField(entry.first, key_, context_)
+          .fail("a map key that is not text (a list or map used as a key; a stray comma or bracket?)");
+    std::string name = entry.first.Scalar();
     if (std::find(seen.begin(), seen.end(), name) != seen.end())
       YamlField(entry.first, join_key(key_, name), context_)
           .fail("key '" + name + "' appears twice in the same map; expected each key once");
