@@ -22,6 +22,11 @@ void ensure_gmsh_initialized() {
 
 void extract_gmsh_mesh(int dimension, const std::string& what, Mesh& mesh) {
   std::vector<int> types;
+  if (dimension == 2) {  // a 3D mesh's boundary triangles are not a plane body
+    gmsh::model::mesh::getElementTypes(types, 3);
+    KERF_CHECK(types.empty(), what, ": holds 3D cells (tetrahedra) but the scene is 2D (dimension: 2); expected a "
+               "triangle mesh in the x-y plane, or dimension: 3");
+  }
   gmsh::model::mesh::getElementTypes(types, dimension);
   const int linear_type = dimension == 3 ? 4 : 2, quadratic_type = dimension == 3 ? 11 : 9;
   bool has_linear = std::find(types.begin(), types.end(), linear_type) != types.end();
