@@ -39,7 +39,10 @@ class Interrupted : public Error {
 constexpr double interrupt_grace_seconds = 5.0;
 
 namespace detail {
-inline volatile std::sig_atomic_t pending_signal = 0;
+// Written by the handler, read by the run and the watchdog thread: a
+// lock-free atomic is both async-signal-safe and free of data races.
+inline std::atomic<int> pending_signal{0};
+static_assert(std::atomic<int>::is_always_lock_free);
 inline std::atomic<int> interrupt_scopes{0};
 inline void record_signal(int signal) {
   if (pending_signal != 0) {  // asked twice: stop now
