@@ -48,6 +48,9 @@ double available_memory_mb();
 /// environment's KERF_MEMORY_LIMIT_MB when smaller.
 double memory_limit_mb(const RankShare& ranks);
 
+/// Throws naming output.vtk when the series would not fit on the disk holding `directory`.
+void refuse_output_that_cannot_fit(const Scene& scene, const ResourceEstimate& estimate, const std::string& directory);
+
 /// Throws naming the scene's file, the key and value that set the size, the
 /// estimated memory, the limit, and --force.
 void refuse_what_cannot_fit(const Scene& scene, const ResourceEstimate& estimate, double limit_mb);

@@ -32,10 +32,14 @@ using json = nlohmann::ordered_json;
 std::string summary_text(const json& summary) { return summary.dump(2, ' ', false, json::error_handler_t::replace); }
 
 /// Puts the resource estimate in the summary and refuses a run that cannot fit (unless forced).
-void estimate_and_guard(const Scene& scene, const RunOptions& options, json& summary) {
+void estimate_and_guard(const Scene& scene, const RunOptions& options, const std::string& directory,
+                        json& summary) {
   const ResourceEstimate estimate = estimate_resources(scene);
   summary["estimate"] = estimate_to_json(estimate);
-  if (!options.force) refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
+  if (!options.force) {
+    refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
+    if (options.writes_files()) refuse_output_that_cannot_fit(scene, estimate, directory);
+  }
   // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
   if (!options.quiet && estimate.mesh_cells > 1e6)
     std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
@@ -147,7 +151,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
   try {
-    estimate_and_guard(scene, options, summary);
+    estimate_and_guard(scene, options, outcome.directory, summary);
     const InterruptLastWords last_words(summary_saying_interrupted(writes ? summary_path : "", summary));
     const double start = now_seconds();
     SolverState state;
