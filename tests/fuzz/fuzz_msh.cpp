@@ -4,6 +4,8 @@
 // Every bad file must end in kerf::Error; a mesh that comes back must be
 // whole (every cell's nodes exist). Any other exception, a crash or a
 // sanitizer report in this process is a finding.
+#include <pthread.h>
+#include <sanitizer/common_interface_defs.h>
 #include <unistd.h>
 
 #include <cstdint>
@@ -14,6 +16,14 @@
 
 #include "core/check.h"
 #include "geometry/msh_reader.h"
+
+// read_msh forks gmsh's reader; the child is a copy of this fuzzer, and its
+// death (gmsh crashing or running out of memory, which kerf reports) would
+// run libFuzzer's death callback there and be written up as the fuzzer's crash.
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  pthread_atfork(nullptr, nullptr, [] { __sanitizer_set_death_callback(nullptr); });
+  return 0;
+}
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   static const std::string path = "/tmp/kerf_fuzz_" + std::to_string(::getpid()) + ".msh";
