@@ -66,6 +66,9 @@ TEST_P(ResourceEstimate, MatchesTheRunsCountsAndPeakMemory) {
     const double cells = estimate["mesh_cells"], actual = static_cast<double>(counts["elements"]) / points_per_element;
     EXPECT_NEAR(cells / actual, 1.0, 0.2) << cells << " cells estimated, " << actual << " meshed";
   }
+#if defined(__SANITIZE_ADDRESS__)
+  return;  // make check-sanitize: ASan's shadow memory and quarantine double the peak; the estimate is the release build's
+#endif
   double peak = 0.0;
   for (const auto& [mark, by_rank] : ran.summary["parallel"]["peak_memory_mb_by_rank"].items())
     peak = std::max(peak, by_rank[0].get<double>());
