@@ -16,4 +16,8 @@ cmake --build "$build" -j 2 || exit 1
 export ASAN_OPTIONS=halt_on_error=1:detect_leaks=1:fast_unwind_on_malloc=0
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 export LSAN_OPTIONS=suppressions=$root/tests/sanitize/lsan.supp:print_suppressions=0
-cd "$build" && ctest --output-on-failure -j 2 -R "^(unit|regression|malformed)\." --timeout 1200
+# Left out: malformed.mesh_gmsh_bad_alloc, where gmsh's reader meets an
+# allocation it cannot have: under ASan operator new aborts instead of
+# throwing std::bad_alloc (the run then says gmsh crashed, not bad_alloc).
+cd "$build" && ctest --output-on-failure -j 2 -R "^(unit|regression|malformed)\." -E "mesh_gmsh_bad_alloc" \
+  --timeout 1200
