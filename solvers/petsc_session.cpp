@@ -49,8 +49,11 @@ void stop_every_rank(const RankShare& ranks, int code, const std::string& messag
       std::cerr << "kerf: error: rank " << ranks.rank << ": " << e.what() << std::endl;
     }
   }
-  std::cerr << "kerf: error: " << (ranks.rank != 0 ? "rank " + std::to_string(ranks.rank) + ": " : "") << message
-            << std::endl;
+  // One write: std::cerr writes each piece at once, and mpirun's abort banner
+  // (another process, same terminal) could land between them.
+  const std::string line =
+      "kerf: error: " + (ranks.rank != 0 ? "rank " + std::to_string(ranks.rank) + ": " : "") + message + "\n";
+  std::cerr << line << std::flush;
   MPI_Abort(PETSC_COMM_WORLD, code);
   std::_Exit(code);  // MPI_Abort does not return; should it, nothing may wait for this rank
 }
