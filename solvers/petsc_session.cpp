@@ -4,6 +4,7 @@
 #include <petscvec.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdlib>
 #include <iostream>
 #include <string>
@@ -41,6 +42,10 @@ void ensure_petsc_initialized() {
 
 void stop_every_rank(const RankShare& ranks, int code, const std::string& message,
                      const std::function<void()>& if_alone) {
+  // mpirun ends the other ranks of an aborted job with SIGTERM: this rank is
+  // stopping, so that must end it rather than ask it to stop (InterruptScope).
+  std::signal(SIGTERM, SIG_DFL);
+  std::signal(SIGINT, SIG_DFL);
   if (ranks.rank != 0) {
     std::this_thread::sleep_for(std::chrono::seconds(1));
     try {
