@@ -25,7 +25,7 @@ constexpr const char* usage =
     "usage:\n"
     "  kerf run SCENE.yaml [--set KEY=VALUE]... [--out DIR] [--quiet] [--force]\n"
     "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene and its estimate\n"
-    "  (--force: run even when the estimated memory exceeds what the machine has)\n"
+    "  (--force: run even when the estimated memory or output exceeds what the machine has)\n"
     "  kerf study [NAME] [--quick] [--out DIR] [--quiet]   the studies; no NAME lists them\n"
     "  kerf --version\n";
 

@@ -4,6 +4,7 @@
 // basis does not contain; the displacement error must fall as h^2. The
 // quadratic basis contains it: the error is then only the quadrature's.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 
@@ -42,7 +43,8 @@ output:
 )";
   overrides.push_back("discretization.meshless.spacing=" + std::to_string(spacing));
   overrides.push_back("discretization.meshless.basis=" + basis);
-  overrides.push_back("output.dir=" + testing::output_directory("efg_column"));
+  // A folder of this test process's own: the tests using this run at once under ctest -j2.
+  overrides.push_back("output.dir=" + testing::output_directory("efg_column_" + std::to_string(::getpid())));
   Scene scene = testing::scene_from_text(yaml, overrides);
   RunOptions options;
   options.quiet = true;
