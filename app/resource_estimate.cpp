@@ -59,6 +59,13 @@ struct SizeCounts {
   double volume = 0.0, boundary = 0.0;
 };
 
+/// The volume (area in 2D) two boxes share.
+double overlap_volume(const Box& a, const Box& b, int d) {
+  double v = 1.0;
+  for (int i = 0; i < d; ++i) v *= std::max(0.0, std::min(a.max[i], b.max[i]) - std::max(a.min[i], b.min[i]));
+  return v;
+}
+
 /// Past this many refine boxes the exact count (a grid of up to (2B+1)^d
 /// pieces, each testing every box) would cost more than the run it guards.
 constexpr std::size_t exact_refine_limit = 24;
@@ -74,10 +81,7 @@ SizeCounts counts_box_by_box(const Scene& scene, double size) {
                       : 2.0 * (e.x() + e.y()) / size;
   for (const RefineRegion& r : scene.discretization.refine) {
     if (!(r.size > 0.0 && r.size < size)) continue;
-    double v = 1.0;
-    for (int i = 0; i < d; ++i)
-      v *= std::max(0.0, std::min(r.box.max[i], domain.max[i]) - std::max(r.box.min[i], domain.min[i]));
-    n.volume += v * (std::pow(r.size, -d) - std::pow(size, -d));
+    n.volume += overlap_volume(r.box, domain, d) * (std::pow(r.size, -d) - std::pow(size, -d));
   }
   return n;
 }
@@ -160,12 +164,6 @@ double lattice_points(const Box& box, double spacing, int d) {
   double n = 1.0;
   for (int i = 0; i < d; ++i) n *= std::floor((box.max[i] - box.min[i]) / spacing + 1e-9) + 1.0;
   return n;
-}
-
-double overlap_volume(const Box& a, const Box& b, int d) {
-  double v = 1.0;
-  for (int i = 0; i < d; ++i) v *= std::max(0.0, std::min(a.max[i], b.max[i]) - std::max(a.min[i], b.min[i]));
-  return v;
 }
 
 /// Nodes of the lattice at `spacing` with each refine box's own lattice
