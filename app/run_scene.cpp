@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "app/cut_follower.h"
 #include "app/resource_estimate.h"
@@ -12,6 +13,7 @@
 #include "core/check.h"
 #include "core/interrupt.h"
 #include "core/peak_memory.h"
+#include "core/progress_heartbeat.h"
 #include "core/rank_share.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
@@ -32,18 +34,28 @@ using json = nlohmann::ordered_json;
 std::string summary_text(const json& summary) { return summary.dump(2, ' ', false, json::error_handler_t::replace); }
 
 /// Puts the resource estimate in the summary and refuses a run that cannot fit (unless forced).
-void estimate_and_guard(const Scene& scene, const RunOptions& options, const std::string& directory,
-                        json& summary) {
+ResourceEstimate estimate_and_guard(const Scene& scene, const RunOptions& options, const std::string& directory,
+                                    json& summary) {
   const ResourceEstimate estimate = estimate_resources(scene);
   summary["estimate"] = estimate_to_json(estimate);
   if (!options.force) {
     refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
     if (options.writes_files()) refuse_output_that_cannot_fit(scene, estimate, directory);
   }
-  // gmsh says nothing while it meshes, and a signal is honoured only once it is done.
-  if (!options.quiet && estimate.mesh_cells > 1e6)
-    std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
-                 scene.name.c_str(), estimate.mesh_cells);
+  return estimate;
+}
+
+/// gmsh says nothing while it meshes: a set-up that meshes more than a million
+/// cells says so first and then shows it is alive every 10 s.
+std::optional<ProgressHeartbeat> announce_long_meshing(const Scene& scene, const RunOptions& options,
+                                                       const ResourceEstimate& estimate) {
+  if (options.quiet || estimate.mesh_cells <= 1e6) return std::nullopt;
+  std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
+               scene.name.c_str(), estimate.mesh_cells);
+  char what[256];
+  std::snprintf(what, sizeof what, "%s: still setting up (gmsh meshing about %.3g cells, then the system; "
+                "Ctrl-C stops it)", scene.name.c_str(), estimate.mesh_cells);
+  return std::optional<ProgressHeartbeat>(std::in_place, what, std::chrono::seconds(10));
 }
 
 /// The watchdog's last words when a signal cannot be honoured in time (in
@@ -151,11 +163,13 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   RunReport& report = outcome.report;
   const InterruptScope interrupt;
   try {
-    estimate_and_guard(scene, options, outcome.directory, summary);
+    const ResourceEstimate estimate = estimate_and_guard(scene, options, outcome.directory, summary);
     const InterruptLastWords last_words(summary_saying_interrupted(writes ? summary_path : "", summary));
     const double start = now_seconds();
     SolverState state;
+    std::optional<ProgressHeartbeat> heartbeat = announce_long_meshing(scene, options, estimate);
     RunParts run = set_up(scene, cuts, state, report);
+    heartbeat.reset();
     report.setup_seconds = now_seconds() - start;
     RunObserver observer(scene, outcome.directory, cuts, *run.probes, options.ranks);
     observer.write(run, state, 0, report);
