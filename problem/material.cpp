@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/check.h"
+
 namespace kerf {
 namespace {
 
@@ -43,19 +45,6 @@ struct RotationSvd {
   }
 };
 
-template <class Directional>
-Mat9 tangent_from_directions(Directional&& dP) {
-  Mat9 C;
-  for (int k = 0; k < 3; ++k)
-    for (int l = 0; l < 3; ++l) {
-      Mat3 dF = Mat3::Zero();
-      dF(k, l) = 1.0;
-      Mat3 d = dP(dF);
-      C.col(k + 3 * l) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data());
-    }
-  return C;
-}
-
 }  // namespace
 
 /// The rotation of the polar decomposition F = R S. Higham's Newton iteration
@@ -83,7 +72,25 @@ Lame Lame::from_young_poisson(double young, double poisson) {
 }
 
 MaterialLaw::MaterialLaw(MaterialModel model, double young, double poisson, bool definite_tangent)
-    : model_(model), lame_(Lame::from_young_poisson(young, poisson)), definite_tangent_(definite_tangent) {}
+    : model_(model),
+      lame_(Lame::from_young_poisson(young, poisson)),
+      definite_tangent_(definite_tangent),
+      linear_(model == MaterialModel::linear) {
+  KERF_CHECK(model != MaterialModel::user, "a registered material law is made from the scene's Material");
+}
+
+MaterialLaw::MaterialLaw(const Material& m, bool definite_tangent)
+    : model_(m.model),
+      lame_(Lame::from_young_poisson(m.young, m.poisson)),
+      definite_tangent_(definite_tangent),
+      linear_(m.model == MaterialModel::linear) {
+  if (model_ != MaterialModel::user) return;
+  const UserMaterialEntry* entry = find_user_material(m.user_model);
+  KERF_CHECK(entry, "material.model: '", m.user_model, "' is not registered in this program");
+  user_ = entry->make(m);
+  KERF_CHECK(user_, "material.model: the factory of '", m.user_model, "' made no law");
+  linear_ = user_->is_linear();
+}
 
 double MaterialLaw::energy(const Mat3& F) const {
   const double lambda = lame_.lambda, mu = lame_.mu;
@@ -107,6 +114,8 @@ double MaterialLaw::energy(const Mat3& F) const {
       double logJ = std::log(J);
       return 0.5 * mu * (F.squaredNorm() - 3.0) - mu * logJ + 0.5 * lambda * logJ * logJ;
     }
+    case MaterialModel::user:
+      return user_->energy(F);
   }
   return 0.0;
 }
@@ -133,6 +142,8 @@ Mat3 MaterialLaw::stress(const Mat3& F) const {
       Mat3 FinvT = F.inverse().transpose();
       return mu * (F - FinvT) + lambda * std::log(J) * FinvT;
     }
+    case MaterialModel::user:
+      return user_->stress(F);
   }
   return Mat3::Zero();
 }
@@ -187,6 +198,9 @@ void MaterialLaw::exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
       });
       return;
     }
+    case MaterialModel::user:
+      user_->stress_and_tangent(F, P, dPdF);
+      return;
   }
 }
 

@@ -5,8 +5,11 @@
 //   stress(F)  first Piola-Kirchhoff stress P (Pa)
 //   tangent    dP/dF as a 9x9 matrix on column-major vec(F): entry (i + 3j, k + 3l)
 //              is dP(i,j)/dF(k,l).
+#include <memory>
+
 #include "core/types.h"
 #include "problem/scene.h"
+#include "problem/user_material.h"
 
 namespace kerf {
 
@@ -20,9 +23,10 @@ struct Lame {
 class MaterialLaw {
  public:
   /// `definite_tangent`: stress_and_tangent projects dP/dF to positive semidefinite.
+  /// A built-in model.
   MaterialLaw(MaterialModel model, double young, double poisson, bool definite_tangent = false);
-  explicit MaterialLaw(const Material& m, bool definite_tangent = false)
-      : MaterialLaw(m.model, m.young, m.poisson, definite_tangent) {}
+  /// The scene's material: a built-in model, or one registered from outside kerf (user_material.h).
+  explicit MaterialLaw(const Material& m, bool definite_tangent = false);
 
   double energy(const Mat3& F) const;
   Mat3 stress(const Mat3& F) const;
@@ -35,7 +39,7 @@ class MaterialLaw {
   Mat3 cauchy_stress(const Mat3& F) const;
 
   /// True when P is linear in F, so the stiffness never changes.
-  bool is_linear() const { return model_ == MaterialModel::linear; }
+  bool is_linear() const { return linear_; }
   MaterialModel model() const { return model_; }
   const Lame& lame() const { return lame_; }
   /// Dilatational wave speed squared times density: lambda + 2 mu (Pa).
@@ -48,7 +52,24 @@ class MaterialLaw {
   MaterialModel model_;
   Lame lame_;
   bool definite_tangent_;
+  std::shared_ptr<const UserMaterialLaw> user_;  // when model_ is user
+  bool linear_;
 };
+
+/// dP/dF from its directional derivative: `dP(dF)` is the change of P along
+/// dF; column k + 3l is the change along the unit dF(k, l).
+template <class Directional>
+Mat9 tangent_from_directions(Directional&& dP) {
+  Mat9 C;
+  for (int k = 0; k < 3; ++k)
+    for (int l = 0; l < 3; ++l) {
+      Mat3 dF = Mat3::Zero();
+      dF(k, l) = 1.0;
+      const Mat3 d = dP(dF);
+      C.col(k + 3 * l) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(d.data());
+    }
+  return C;
+}
 
 /// R of the polar decomposition F = R S (a proper rotation; S symmetric).
 Mat3 polar_rotation(const Mat3& F);

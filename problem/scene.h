@@ -13,7 +13,9 @@
 
 namespace kerf {
 
-enum class MaterialModel { linear, corotational, stvk, neohookean };
+// `user`: a law registered from outside kerf (user_material.h), named by
+// Material::user_model; it has no EnumNames spelling.
+enum class MaterialModel { linear, corotational, stvk, neohookean, user };
 enum class Method { fem, efg, nodal };
 enum class ElementType { tet4, tet10, tri3, tri6 };
 /// What the scene side needs of an element type: the dimension it fits, its polynomial order.
@@ -62,6 +64,8 @@ struct Material {
   double density = 1000.0; // kg/m^3
   double damping_mass = 0.0;       // Rayleigh alpha (1/s)
   double damping_stiffness = 0.0;  // Rayleigh beta (s)
+  std::string user_model{};                    // the registered name when model is user
+  std::map<std::string, double> parameters{};  // a user model's own constants
 };
 
 struct RefineRegion {
@@ -208,7 +212,7 @@ KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_
 
 template <class E>
 const char* to_string(E value) {
-  return EnumNames<E>::names[static_cast<std::size_t>(value)];
+  return EnumNames<E>::names.at(static_cast<std::size_t>(value));  // MaterialModel::user has no spelling
 }
 
 }  // namespace kerf

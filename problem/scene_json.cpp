@@ -74,11 +74,12 @@ json scene_to_json(const Scene& s) {
   else
     j["domain"] = {{"mesh", s.mesh_file}};
   const Material& m = s.material;
-  j["material"] = {{"model", to_string(m.model)},
+  j["material"] = {{"model", m.model == MaterialModel::user ? m.user_model : to_string(m.model)},
                    {"young", m.young},
                    {"poisson", m.poisson},
                    {"density", m.density},
                    {"damping", {{"mass", m.damping_mass}, {"stiffness", m.damping_stiffness}}}};
+  if (!m.parameters.empty()) j["material"]["parameters"] = m.parameters;
   const DiscretizationOptions& d = s.discretization;
   const MeshlessOptions& ml = d.meshless;
   json refine = json::array();

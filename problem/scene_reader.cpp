@@ -1,5 +1,6 @@
 #include "problem/scene_reader.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "core/check.h"
 #include "problem/scene_overrides.h"
 #include "problem/scene_validation.h"
+#include "problem/user_material.h"
 #include "problem/yaml_access.h"
 
 namespace kerf {
@@ -72,10 +74,54 @@ BoundaryCondition read_boundary_item(const YamlField& f, int dim) {
   return bc;
 }
 
+/// A built-in model's name, or one registered from outside kerf (user_material.h).
+void read_material_model(const YamlField& f, Material& m) {
+  const std::string name = f.text();
+  const auto& builtin = EnumNames<MaterialModel>::names;
+  if (auto it = std::find(builtin.begin(), builtin.end(), name); it != builtin.end()) {
+    m.model = static_cast<MaterialModel>(it - builtin.begin());
+    return;
+  }
+  if (find_user_material(name)) {
+    m.model = MaterialModel::user;
+    m.user_model = name;
+    return;
+  }
+  std::string list;
+  for (const char* b : builtin) list += (list.empty() ? "" : " | ") + std::string(b);
+  for (const std::string& u : user_material_names()) list += " | " + u;
+  f.fail("value " + f.value_text() + " is not allowed; expected one of " + list +
+         " (or a law registered from outside kerf, as examples/user_material does)");
+}
+
+/// A registered law's constants: each it declares, and no other.
+void read_material_parameters(const YamlField& material, Material& m) {
+  const UserMaterialEntry* entry = m.model == MaterialModel::user ? find_user_material(m.user_model) : nullptr;
+  std::string names;
+  if (entry)
+    for (const std::string& p : entry->parameters) names += (names.empty() ? "" : ", ") + p;
+  if (!material.has("parameters") || material["parameters"].is_null()) {  // `parameters: ~` is none
+    if (entry && !entry->parameters.empty())
+      material.fail("missing 'parameters': model '" + m.user_model + "' needs " + names);
+    return;
+  }
+  const YamlField f = material["parameters"];
+  if (!entry)
+    f.fail(std::string("parameters are for a law registered from outside kerf; model '") + to_string(m.model) +
+           "' takes young and poisson only");
+  std::vector<const char*> allowed;
+  for (const std::string& p : entry->parameters) allowed.push_back(p.c_str());
+  f.allow_only(allowed);
+  for (const std::string& p : entry->parameters) {
+    if (!f.has(p)) f.fail("missing '" + p + "': model '" + m.user_model + "' needs " + names);
+    m.parameters[p] = f[p].number();
+  }
+}
+
 void read_material(const YamlField& f, Material& m) {
-  f.allow_only({"model", "young", "poisson", "density", "damping"});
-  if (f.has("model"))
-    m.model = f["model"].enumeration<MaterialModel>();
+  f.allow_only({"model", "young", "poisson", "density", "damping", "parameters"});
+  if (f.has("model")) read_material_model(f["model"], m);
+  read_material_parameters(f, m);
   if (f.has("young")) m.young = f["young"].number();
   if (f.has("poisson")) m.poisson = f["poisson"].number();
   if (f.has("density")) m.density = f["density"].number();

@@ -94,7 +94,7 @@ void YamlField::out_of_range(const std::string& expected) const {
   fail("value " + value_text() + " is out of range; expected " + expected);
 }
 
-void YamlField::allow_only(std::initializer_list<const char*> allowed) const {
+void YamlField::allow_only(std::span<const char* const> allowed) const {
   if (!node_.IsMap()) fail("expected a map with keys, found " + value_text());
   std::vector<std::string> seen;
   for (const auto& entry : node_) {

@@ -42,7 +42,10 @@ class YamlField {
   YamlField operator[](std::size_t index) const;
 
   /// Refuses keys outside `allowed`, suggesting the nearest allowed one.
-  void allow_only(std::initializer_list<const char*> allowed) const;
+  void allow_only(std::span<const char* const> allowed) const;
+  void allow_only(std::initializer_list<const char*> allowed) const {
+    allow_only(std::span<const char* const>(allowed.begin(), allowed.size()));
+  }
   /// Requires exactly one of the keys to be present.
   std::string exactly_one_of(std::initializer_list<const char*> keys) const;
 
