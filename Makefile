@@ -2,7 +2,7 @@
 BUILD ?= build
 JOBS ?= 2
 
-.PHONY: all deps configure build run test bench fuzz check-sanitize clean
+.PHONY: all deps configure build run test bench install deb fuzz check-sanitize clean
 
 all: build
 
@@ -23,6 +23,16 @@ test: build
 
 bench: build
 	@$(BUILD)/tests/kerf_benchmarks
+
+# The command, libraries, headers, scenes and CMake package under PREFIX
+# (find_package(kerf) with CMAKE_PREFIX_PATH=PREFIX), and the .deb of the
+# same install (in $(BUILD); `apt install ./kerf_*.deb`).
+PREFIX ?= /usr/local
+install: build
+	@cmake --install $(BUILD) --prefix $(PREFIX)
+
+deb: build
+	@cd $(BUILD) && cpack -G DEB
 
 # Slow checks, not part of `make test`: libFuzzer on the scene and mesh
 # readers (FUZZ_SECONDS each, default 600; clang-16, in build-fuzz), and the

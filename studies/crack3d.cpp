@@ -320,7 +320,7 @@ void crack3d_study(const StudyOptions& options) {
   StudyRunner runner("crack3d", options, planned);
 
   // The independent check: the 2D plane-strain plate, a quarter by symmetry (its centre moves half the opening).
-  const std::string source = std::string(KERF_SOURCE_DIR) + "/scenes/";
+  const std::string source = study_data_path("scenes") + "/";
   const Json plate = runner.run("plane_strain_2d_quarter", read_scene_text(source + "crack_plate_2d_quarter_fem.yaml"));
   KERF_CHECK(plate.value("status", "") == "ok", "crack3d: the 2D quarter model failed: ", plate.value("error", ""));
   const double plate_opening = 2.0 * plate["probes"]["centre"]["displacement"][1].get<double>();

@@ -126,7 +126,7 @@ void pareto_study(const StudyOptions& options) {
       }
       points.push_back(p);
     }
-  const std::string crack_scene = read_scene_text(std::string(KERF_SOURCE_DIR) + "/scenes/crack_plate_2d.yaml");
+  const std::string crack_scene = read_scene_text(study_data_path("scenes/crack_plate_2d.yaml"));
   const Json reference = runner.run(
       "crack_reference", crack_scene,
       {"discretization.method=fem", "discretization.fem.element=tri6", "discretization.fem.size=0.0005",

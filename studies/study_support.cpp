@@ -181,8 +181,20 @@ ProbeHistory read_probe_history(const std::string& run_dir) {
   return history;
 }
 
+std::string study_data_path(const std::string& relative) {
+  std::error_code ignored;
+  const std::filesystem::path program = std::filesystem::read_symlink("/proc/self/exe", ignored);
+  // The source tree; beside the program (an install moved with --prefix); the configured prefix.
+  const std::string candidates[] = {std::string(KERF_SOURCE_DIR) + "/" + relative,
+                                    (program.parent_path() / "../share/kerf" / relative).string(),
+                                    std::string(KERF_INSTALLED_DATA_DIR) + "/" + relative};
+  for (const std::string& path : candidates)
+    if (std::filesystem::exists(path)) return path;
+  return candidates[0];
+}
+
 void plot(const std::string& script, const std::string& out_dir) {
-  const std::string path = std::string(KERF_SOURCE_DIR) + "/studies/plots/" + script + ".py";
+  const std::string path = study_data_path("studies/plots/" + script + ".py");
   const std::string command = "/usr/bin/python3 '" + path + "' '" + out_dir + "'";
   const int status = std::system(command.c_str());
   KERF_CHECK(status == 0, "the plot script ", path, " failed (exit ", status,

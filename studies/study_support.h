@@ -71,6 +71,11 @@ double phase_ms_per_step(const Json& summary, const std::string& phase, int step
 /// Runs studies/plots/<script>.py on the study's folder with /usr/bin/python3.
 void plot(const std::string& script, const std::string& out_dir);
 
+/// A file the studies ship (scenes/..., studies/plots/...): from the source
+/// tree kerf was built in while it exists, else from the installed data
+/// (share/kerf beside the program's bin/, or under the configured prefix).
+std::string study_data_path(const std::string& relative);
+
 /// Writes <out>/<study>.json atomically.
 void write_json(const std::string& path, const Json& value);
 

@@ -1,0 +1,14 @@
+// kerf's command line with this project's laws registered (mooney_rivlin.cpp
+// registers at start-up): `kerf_mooney_rivlin run SCENE.yaml`, as `kerf run`.
+#include <string>
+#include <vector>
+
+#include "app/cli.h"
+#include "core/denormals.h"
+#include "core/openmp_limit.h"
+
+int main(int argc, char** argv) {
+  kerf::limit_openmp_threads_to_cores(argv);
+  kerf::flush_denormals_to_zero();
+  return kerf::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
+}

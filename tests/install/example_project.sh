@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# `cmake --install` into a fresh prefix, then examples/user_material
+# configured with only that prefix (no kerf source or build tree on its
+# paths), built, and its own tests run: a law registered outside kerf, used
+# by a scene, checked against kerf's neo-Hookean.
+# Usage: example_project.sh SOURCE_DIR BUILD_DIR WORK_DIR
+set -euo pipefail
+source_dir=$1 build_dir=$2 work=$3
+rm -rf "$work"
+mkdir -p "$work"
+cmake --install "$build_dir" --prefix "$work/prefix" >"$work/install.log"
+test -x "$work/prefix/bin/kerf" || { echo "no bin/kerf in the prefix"; exit 1; }
+"$work/prefix/bin/kerf" --version
+cmake -S "$source_dir/examples/user_material" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >"$work/configure.log" ||
+  { cat "$work/configure.log"; exit 1; }
+grep -q "kerf_DIR:PATH=$work/prefix/" "$work/example/CMakeCache.txt" ||
+  { echo "find_package(kerf) found another kerf: $(grep kerf_DIR "$work/example/CMakeCache.txt")"; exit 1; }
+cmake --build "$work/example" -j 2 >"$work/build.log" 2>&1 || { tail -40 "$work/build.log"; exit 1; }
+cd "$work/example" && ctest --output-on-failure -V 2>&1 | grep -E "tip z|tests passed|Failed|\*\*\*|Error|error" 
+ctest --output-on-failure >/dev/null
