@@ -75,6 +75,14 @@ std::function<void(int)> summary_saying_interrupted(const std::string& path, jso
   };
 }
 
+/// The body at the end of the run, as ParaView gets it.
+std::shared_ptr<const BodySnapshot> final_body(const RunParts& run, const SolverState& state) {
+  auto body = std::make_shared<BodySnapshot>();
+  Vector body_u;
+  run.body->snapshot(run.mechanics->body_part(state.u, body_u), *body);
+  return body;
+}
+
 /// The body, its mechanical system, stepper and probes, the initial state.
 RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, RunReport& report) {
   RunParts run;
@@ -179,6 +187,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     report.parallel.memory.at_end = peak_memory_mb();
     report.parallel.memory_by_rank = memory_of_every_rank(report.parallel.memory, options.ranks);
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
+    if (options.keep_final_body) outcome.final_body = final_body(run, state);
     write_report(report, summary);
     summary["status"] = "ok";
     if (writes) write_file_atomically(summary_path, summary_text(summary));

@@ -1,10 +1,12 @@
 #pragma once
 // One run of a scene, end to end: discretize, step, observe, write results.
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
 #include "core/rank_share.h"
 #include "core/run_report.h"
+#include "discretization/body_snapshot.h"
 #include "discretization/cut_timeline.h"
 #include "problem/scene.h"
 
@@ -15,6 +17,7 @@ struct RunOptions {
   bool quiet = false;
   RankShare ranks{};  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
   bool force = false;  // run even when the resource estimate says the run cannot fit in memory
+  bool keep_final_body = false;  // RunOutcome::final_body (the Python module's arrays)
   bool writes_files() const { return ranks.rank == 0; }
 };
 
@@ -22,6 +25,9 @@ struct RunOutcome {
   std::string directory;
   nlohmann::ordered_json summary;  // as written to summary.json
   RunReport report;                // the same figures, typed
+  /// The body at the end, as ParaView gets it (reference points, the point
+  /// fields: displacement, stresses); with RunOptions::keep_final_body.
+  std::shared_ptr<const BodySnapshot> final_body;
 };
 
 /// Refuses, before any work, what the scene asks for that cannot run

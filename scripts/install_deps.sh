@@ -7,7 +7,7 @@ packages=(
   libeigen3-dev libsuitesparse-dev libopenblas0-openmp petsc-dev mpi-default-dev libcgal-dev
   libgmsh-dev gmsh libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libnanoflann-dev
   libgtest-dev libbenchmark-dev
-  python3-numpy python3-matplotlib
+  python3-numpy python3-matplotlib python3-dev pybind11-dev python3-pytest
   "$@"
 )
 missing=()

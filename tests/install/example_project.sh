@@ -11,6 +11,9 @@ mkdir -p "$work"
 cmake --install "$build_dir" --prefix "$work/prefix" >"$work/install.log"
 test -x "$work/prefix/bin/kerf" || { echo "no bin/kerf in the prefix"; exit 1; }
 "$work/prefix/bin/kerf" --version
+# The Python package from the prefix alone (not the build tree's).
+(cd "$work" && PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
+  "import kerf, sys; assert kerf.__file__.startswith('$work/prefix/'), kerf.__file__; print('python: kerf', kerf.__version__)")
 cmake -S "$source_dir/examples/user_material" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >"$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }

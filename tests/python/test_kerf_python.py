@@ -1,0 +1,90 @@
+"""The kerf Python module against the `kerf` command: the same scene gives the
+same numbers to the last digit; a dict is a scene; errors name the key;
+arrays view kerf's memory; a study runs. Run by ctest (python.pytest) with
+PYTHONPATH at build/python, KERF_BINARY_DIR and KERF_SOURCE_DIR set."""
+import json
+import os
+import subprocess
+
+import numpy
+import pytest
+
+import kerf
+
+SOURCE = os.environ["KERF_SOURCE_DIR"]
+BUILD = os.environ["KERF_BINARY_DIR"]
+CANTILEVER = os.path.join(SOURCE, "scenes", "cantilever.yaml")
+TET4 = ["discretization.fem.element=tet4", "discretization.fem.size=0.004"]
+
+
+def command_line_summary(tmp_path, overrides):
+    out = tmp_path / "command_line"
+    sets = [arg for o in overrides for arg in ("--set", o)]
+    subprocess.run([os.path.join(BUILD, "app", "kerf"), "run", CANTILEVER, "--quiet", "--out", str(out), *sets],
+                   check=True)
+    with open(out / "summary.json") as f:
+        return json.load(f)
+
+
+def test_tip_displacement_equals_the_command_lines_to_the_last_digit(tmp_path):
+    result = kerf.run(CANTILEVER, TET4, out=str(tmp_path / "python"))
+    expected = command_line_summary(tmp_path, TET4)
+    assert result.summary["status"] == "ok"
+    assert result.probes["tip"]["displacement"] == expected["probes"]["tip"]["displacement"]
+    assert result.summary["counts"] == expected["counts"]
+    assert os.path.exists(os.path.join(result.directory, "summary.json"))
+
+
+def test_arrays_are_read_only_views_of_the_final_body(tmp_path):
+    result = kerf.run(CANTILEVER, TET4, out=str(tmp_path))
+    points, u = result.points, result.displacement
+    assert points.shape == (result.summary["counts"]["nodes"], 3) and u.shape == points.shape
+    assert not points.flags.writeable and not points.flags.owndata  # kerf's memory, not a copy
+    assert set(result.point_fields) >= {"displacement"}
+    # The tip probe is a point of the mesh's corner (0.1, 0.01, 0.01): its row holds the probe's value.
+    tip = numpy.argmin(numpy.linalg.norm(points - [0.1, 0.01, 0.01], axis=1))
+    if numpy.linalg.norm(points[tip] - [0.1, 0.01, 0.01]) < 1e-12:
+        assert list(u[tip]) == pytest.approx(result.probes["tip"]["displacement"], rel=1e-12)
+    assert u[:, 2].min() < 0.0  # it sags
+    del result  # the arrays keep the body alive
+    assert numpy.isfinite(u).all() and u[:, 2].min() < 0.0
+
+
+def test_a_dict_is_a_scene_and_overrides_apply(tmp_path):
+    scene = kerf.load_scene(CANTILEVER, TET4).to_dict()
+    scene["output"]["vtk"] = False
+    scene["name"] = "from_a_dict"
+    result = kerf.run(scene, ["material.young=2e6"], out=str(tmp_path))
+    assert result.summary["scene"]["name"] == "from_a_dict"
+    assert result.summary["scene"]["material"]["young"] == 2e6
+    stiff = result.probes["tip"]["displacement"][2]
+    soft = kerf.run(kerf.load_scene(scene), out=str(tmp_path / "soft")).probes["tip"]["displacement"][2]
+    assert stiff == pytest.approx(soft / 2, rel=1e-9)  # linear: twice the modulus, half the sag
+
+
+def test_a_bad_scene_raises_kerf_error_naming_the_key():
+    with pytest.raises(kerf.Error, match=r"key 'material\.poisson'.*0\.7") as raised:
+        kerf.load_scene(CANTILEVER, ["material.poisson=0.7"])
+    assert isinstance(raised.value, RuntimeError)
+    with pytest.raises(kerf.Error, match=r"unknown key 'yuong' \(did you mean 'young'\?\)"):
+        kerf.run({"domain": {"box": {"min": [0, 0, 0], "max": [1, 1, 1]}}, "material": {"yuong": 1}})
+    with pytest.raises(kerf.Error, match="cantilever_missing.yaml"):
+        kerf.load_scene(os.path.join(SOURCE, "scenes", "cantilever_missing.yaml"))
+
+
+def test_a_failed_run_raises_and_leaves_its_summary(tmp_path):
+    with pytest.raises(kerf.Error, match="Newton did not converge"):
+        kerf.run(CANTILEVER, TET4 + ["material.model=neohookean", "body_force.gravity=[0,0,-5000]",
+                                     "solve.newton.max_iterations=2"], out=str(tmp_path))
+    with open(tmp_path / "summary.json") as f:
+        assert json.load(f)["status"] == "error"
+
+
+def test_studies_are_listed_and_run(tmp_path):
+    names = [name for name, _ in kerf.studies()]
+    assert {"hertz", "timing", "cut"} <= set(names)
+    summary = kerf.study("solvers", quick=True, out=str(tmp_path))  # the quickest: 2 s
+    assert summary["study"] == "solvers" and summary["quick"] and summary["headline"]
+    assert os.path.exists(tmp_path / "solvers.csv")
+    with pytest.raises(kerf.Error, match="no_such_study"):
+        kerf.study("no_such_study")
