@@ -1,5 +1,7 @@
 #include "output/vtk_series.h"
 
+#include <filesystem>
+
 #include <vtkCellArray.h>
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
@@ -146,27 +148,60 @@ std::string VtkSeries::write(const BodySnapshot& snapshot, double time, const Bo
   if (cut && !cut->cell_types.empty()) {
     entry.parts[1] = file_name("_cut", step, ".vtu");
     write_vtu(*cut, directory_ + "/" + entry.parts[1]);
+    part_names_.resize(std::max<std::size_t>(part_names_.size(), 2), "");
+    part_names_[1] = "cut";
   }
   if (lattices) {
     lattice_files_.resize(std::max(lattice_files_.size(), lattices->size()));
+    part_names_.resize(std::max(part_names_.size(), 2 + lattices->size()), "");
     for (std::size_t g = 0; g < lattices->size(); ++g) {
       lattice_files_[g] = file_name("_" + (*lattices)[g].name, step, ".vti");
       write_vti((*lattices)[g], directory_ + "/" + lattice_files_[g]);
+      part_names_[2 + g] = (*lattices)[g].name;
     }
   }
   entry.parts.insert(entry.parts.end(), lattice_files_.begin(), lattice_files_.end());
   entries_.push_back(std::move(entry));
+  write_collection();
+  return directory_ + "/" + entries_.back().parts[0];
+}
+
+// ParaView's PVD reader fixes the number of parts it reads from the first
+// step: a part that first appears later (a cut that grows in, its grid) would
+// never be shown. So once a part has appeared, every step lists it, an empty
+// file standing in where it did not exist yet.
+void VtkSeries::write_collection() {
   std::ostringstream pvd;
   pvd.precision(17);
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n  <Collection>\n";
+  const std::size_t parts = part_names_.size();
   for (const Entry& e : entries_)
-    for (std::size_t part = 0; part < e.parts.size(); ++part)
-      if (!e.parts[part].empty())
-        pvd << "    <DataSet timestep=\"" << e.time << "\" part=\"" << part << "\" file=\"" << e.parts[part]
-            << "\"/>\n";
+    for (std::size_t part = 0; part < std::max<std::size_t>(parts, 1); ++part) {
+      std::string file = part < e.parts.size() ? e.parts[part] : "";
+      if (file.empty()) file = empty_part_file(part);
+      if (file.empty()) continue;  // a part no step has had yet
+      pvd << "    <DataSet timestep=\"" << e.time << "\" part=\"" << part << "\" file=\"" << file << "\" name=\""
+          << (part == 0 ? "body" : part_names_[part]) << "\"/>\n";
+    }
   pvd << "  </Collection>\n</VTKFile>\n";
   write_file_atomically(pvd_path_, pvd.str());
-  return directory_ + "/" + entries_.back().parts[0];
+}
+
+std::string VtkSeries::empty_part_file(std::size_t part) {
+  if (part == 0 || part >= part_names_.size() || part_names_[part].empty()) return "";
+  const bool lattice = part >= 2;
+  const std::string file = name_ + "_" + part_names_[part] + (lattice ? "_empty.vti" : "_empty.vtu");
+  if (!std::filesystem::exists(directory_ + "/" + file)) {
+    if (lattice) {
+      LatticeSnapshot empty;
+      empty.name = part_names_[part];
+      empty.count = {0, 0, 0};
+      write_vti(empty, directory_ + "/" + file);
+    } else {
+      write_vtu(BodySnapshot{}, directory_ + "/" + file);
+    }
+  }
+  return file;
 }
 
 }  // namespace kerf

@@ -3,7 +3,8 @@
 // .pvd collection rewritten after each, so the series on disk is always
 // readable. With cuts, the cut surface is its own part (part 1, its own .vtu
 // per step) and each Enrichment Grid's phi a further part (.vti, written when
-// the grid changed and referred to until it changes again). Under mpirun
+// the grid changed and referred to until it changes again); once a part has
+// appeared every step lists it (empty before), as ParaView's reader needs. Under mpirun
 // each rank writes its share of the body's cells as a piece and rank 0 joins
 // them in a .pvtu per step; the other parts are small and rank 0 writes them.
 #include <functional>
@@ -36,6 +37,10 @@ class VtkSeries {
   /// piece is written. Returns the .pvtu's file name.
   std::string write_pieces(const BodySnapshot& snapshot, std::size_t step);
   std::string file_name(const std::string& part, std::size_t step, const std::string& ending) const;
+  /// Rewrites the .pvd: every step, every part that has appeared so far.
+  void write_collection();
+  /// The empty file standing in for `part` at a step it did not exist ("" for the body).
+  std::string empty_part_file(std::size_t part);
 
   std::string directory_, name_, pvd_path_;
   RankShare ranks_;
@@ -47,6 +52,7 @@ class VtkSeries {
   };
   std::vector<Entry> entries_;
   std::vector<std::string> lattice_files_;  // the last written file of each lattice
+  std::vector<std::string> part_names_;     // ParaView's block names: "", "cut", each lattice's ("" not yet)
 };
 
 /// Writes one snapshot as a .vtu file (atomically).
