@@ -26,6 +26,14 @@ for path in sorted(glob.glob(os.path.join(out, "*", "*.json"))):
     for plot in study.get("plots", []):
         lines.append(f"![{name}]({name}/{plot})")
     lines.append("")
+pictures = sorted(glob.glob(os.path.join(out, "pictures", "*.png")))
+if pictures:
+    lines += ["## The cut block at its last step, in ParaView", "",
+              "Rendered by ParaView itself (pvbatch, scripts/paraview_pictures.py) from the cut study's",
+              "series: the body warped by its displacement and coloured by von Mises stress (Pa), the cut",
+              "surface in black at its reference place.", ""]
+    lines += [f"![{os.path.basename(p)[:-4]}]({os.path.relpath(p, out)}) " for p in pictures]
+    lines.append("")
 scenes = sorted(glob.glob(os.path.join(out, "scenes", "*", "*.pvd")))
 if scenes:
     lines += ["## ParaView series of the example scenes", ""]

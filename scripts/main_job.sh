@@ -17,6 +17,9 @@ for study in $("$kerf" study | awk '/^  /{print $1}'); do
   echo "== study $study"
   "$kerf" study "$study" --quick --out "$out/$study"
 done
+echo "== pictures of the cut block (ParaView)"
+KERF_PARAVIEW_PYTHON="$build/paraview-python" scripts/pvbatch.sh scripts/paraview_pictures.py "$out/cut" \
+  "$out/pictures" 2>&1 | grep -vE "^\s*$|Could not determine"
 readme=$(/usr/bin/python3 scripts/headline_table.py "$out")
 echo
 echo "Headline figures and plots: $readme"
