@@ -15,6 +15,19 @@ Scene scene_from_text(const std::string& yaml, const std::vector<std::string>& o
   return parse_scene(yaml, "test.yaml", source_path("scenes"), overrides);
 }
 
+std::string scene_refusal(const std::string& yaml, const std::vector<std::string>& overrides) {
+  try {
+    scene_from_text(yaml, overrides);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+void expect_contains(const std::string& text, const std::string& part) {
+  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
+}
+
 std::string output_directory(const std::string& test_name) {
   std::string dir = std::string(KERF_BINARY_DIR) + "/test_output/" + test_name;
   std::filesystem::remove_all(dir);

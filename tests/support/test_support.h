@@ -15,6 +15,10 @@ namespace kerf::testing {
 
 /// Parses a scene given as YAML text (relative paths from the source tree's scenes/).
 Scene scene_from_text(const std::string& yaml, const std::vector<std::string>& overrides = {});
+/// The message reading the scene throws (kerf::Error), or "" when it reads.
+std::string scene_refusal(const std::string& yaml, const std::vector<std::string>& overrides = {});
+/// EXPECTs that `text` holds `part`, printing both otherwise.
+void expect_contains(const std::string& text, const std::string& part);
 
 /// A fresh output directory under the build tree for one test.
 std::string output_directory(const std::string& test_name);

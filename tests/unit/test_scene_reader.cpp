@@ -13,18 +13,7 @@
 namespace kerf {
 namespace {
 
-std::string refusal(const std::string& yaml, const std::vector<std::string>& overrides = {}) {
-  try {
-    testing::scene_from_text(yaml, overrides);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_contains(const std::string& text, const std::string& part) {
-  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
+using testing::expect_contains;
 
 TEST(SceneReader, FillsDefaults) {
   Scene s = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}");
@@ -64,33 +53,33 @@ TEST(SceneReader, MeshPathsThatAreNotFilesAreRefusedByKey) {
   std::filesystem::create_symlink(dir / "loop_a.msh", dir / "loop_b.msh");
   std::filesystem::create_symlink(dir / "loop_b.msh", dir / "loop_a.msh");
   for (const std::string name : {"pipe.msh", "loop_a.msh"}) {
-    const std::string m = refusal("domain: {mesh: " + (dir / name).string() + "}\n");
+    const std::string m = testing::scene_refusal("domain: {mesh: " + (dir / name).string() + "}\n");
     expect_contains(m, "key 'domain.mesh': file '" + (dir / name).string() + "' does not exist or is not a file");
   }
-  expect_contains(refusal("domain: {mesh: " + (dir / "loop_a.msh").string() + "}\n"), "symbolic links");
+  expect_contains(testing::scene_refusal("domain: {mesh: " + (dir / "loop_a.msh").string() + "}\n"), "symbolic links");
 }
 
 TEST(SceneReader, UnknownKeyNamesLineAndSuggestion) {
-  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial:\n  youngs: 5\n");
+  std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial:\n  youngs: 5\n");
   expect_contains(m, "test.yaml:3:3");
   expect_contains(m, "unknown key 'youngs'");
   expect_contains(m, "did you mean 'young'");
 }
 
 TEST(SceneReader, OutOfRangeValueNamesKeyValueAndRange) {
-  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {poisson: 0.5}\n");
+  std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {poisson: 0.5}\n");
   expect_contains(m, "test.yaml:2:");
   expect_contains(m, "material.poisson");
   expect_contains(m, "'0.5'");
   expect_contains(m, "0 <= poisson < 0.5");
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: -1}\n"), "young > 0");
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {dt: 0}\n"), "dt > 0");
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {linear_tolerance: 2}\n"),
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: -1}\n"), "young > 0");
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {dt: 0}\n"), "dt > 0");
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {linear_tolerance: 2}\n"),
                   "0 < linear_tolerance < 1");
 }
 
 TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
-  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
+  std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
   expect_contains(m, "test.yaml:3:");
   expect_contains(m, "boundary.0.select.plane.at");
   expect_contains(m, "the key is missing");
@@ -98,20 +87,20 @@ TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
 }
 
 TEST(SceneReader, WrongTypesAndShapesAreRefused) {
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: soft}\n"),
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nmaterial: {young: soft}\n"),
                   "expected a number, found 'soft'");
-  expect_contains(refusal("domain: {box: {min: [0,0], max: [1,1]}}\n"), "expected a list of 3 numbers");
-  expect_contains(refusal("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\ndiscretization: {fem: {element: tet4}}\n"),
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0], max: [1,1]}}\n"), "expected a list of 3 numbers");
+  expect_contains(testing::scene_refusal("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\ndiscretization: {fem: {element: tet4}}\n"),
                   "does not fit dimension 2");
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {integrator: rk4}\n"),
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {integrator: rk4}\n"),
                   "expected one of implicit-euler | newmark | central-difference");
-  expect_contains(refusal("domain: {mesh: missing.msh}\n"), "does not exist");
-  expect_contains(refusal("material: {young: 1}\n"), "missing 'domain'");
-  expect_contains(refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: w, at: 0}}\n    fix: [x]\n"),
+  expect_contains(testing::scene_refusal("domain: {mesh: missing.msh}\n"), "does not exist");
+  expect_contains(testing::scene_refusal("material: {young: 1}\n"), "missing 'domain'");
+  expect_contains(testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: w, at: 0}}\n    fix: [x]\n"),
                   "expected one of x | y | z");
   const std::string plate = "dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\nboundary:\n";
-  expect_contains(refusal(plate + "  - select: {plane: {axis: z, at: 0}}\n    fix: [x]\n"), "expected x or y in 2D");
-  expect_contains(refusal(plate + "  - select: {plane: {axis: x, at: 0}}\n    fix: [x, z]\n"),
+  expect_contains(testing::scene_refusal(plate + "  - select: {plane: {axis: z, at: 0}}\n    fix: [x]\n"), "expected x or y in 2D");
+  expect_contains(testing::scene_refusal(plate + "  - select: {plane: {axis: x, at: 0}}\n    fix: [x, z]\n"),
                   "test.yaml:5:10: key 'boundary.0.fix': component z is out of range; expected x or y in 2D");
 }
 
@@ -131,9 +120,9 @@ boundary:
   EXPECT_DOUBLE_EQ(s.discretization.meshless.spacing, 0.002);
   EXPECT_DOUBLE_EQ(s.solve.newton.tolerance, 1e-10);
   // A value set on the command line is blamed on the command line.
-  expect_contains(refusal(yaml, {"material.poisson=0.7"}), "set on the command line");
-  expect_contains(refusal(yaml, {"boundary.5.fix=[x]"}), "not an item of an existing list");
-  expect_contains(refusal(yaml, {"material.young"}), "expected KEY=VALUE");
+  expect_contains(testing::scene_refusal(yaml, {"material.poisson=0.7"}), "set on the command line");
+  expect_contains(testing::scene_refusal(yaml, {"boundary.5.fix=[x]"}), "not an item of an existing list");
+  expect_contains(testing::scene_refusal(yaml, {"material.young"}), "expected KEY=VALUE");
 }
 
 // validate() is the one check, whoever built the scene: a Scene built in code
@@ -181,7 +170,7 @@ TEST(SceneValidation, SmoothedGradientsWithInterpolatedLookupRefuseAKinkedCut) {
   const char* plane = "dimension: 2\ndomain: {box: {min: [0, 0], max: [1, 1]}}\n"
                       "cuts: [{polyline: [[0, 0.5], [0.3, 0.5], [0.6, 0.5]]}]\n";
   testing::scene_from_text(plane, with({}));  // straight
-  const std::string m = refusal(plane, with({"cuts.0.polyline=[[0, 0.5], [0.3, 0.5], [0.6, 0.55]]"}));
+  const std::string m = testing::scene_refusal(plane, with({"cuts.0.polyline=[[0, 0.5], [0.3, 0.5], [0.6, 0.55]]"}));
   expect_contains(m, "key 'cuts.0.grid.lookup'");
   expect_contains(m, "value interpolated");
   expect_contains(m, "kinked cut");
@@ -191,7 +180,7 @@ TEST(SceneValidation, SmoothedGradientsWithInterpolatedLookupRefuseAKinkedCut) {
   const char* solid = "domain: {box: {min: [0, 0, 0], max: [1, 1, 1]}}\n"
                       "cuts: [{strip: [[0.5, 0, 1.1], [0.5, 0, 0.4], [0.5, 0.5, 1.1], [0.5, 0.5, 0.4]]}]\n";
   testing::scene_from_text(solid, with({}));  // one plane
-  expect_contains(refusal(solid, with({"cuts.0.strip=[[0.5, 0, 1.1], [0.5, 0, 0.4], [0.5, 0.5, 1.1], "
+  expect_contains(testing::scene_refusal(solid, with({"cuts.0.strip=[[0.5, 0, 1.1], [0.5, 0, 0.4], [0.5, 0.5, 1.1], "
                                        "[0.6, 0.5, 0.4]]"})),
                   "kinked cut");
 }
@@ -205,7 +194,7 @@ TEST(SceneValidation, AValueChangedInCodeIsReportedAsItIsNow) {
 }
 
 TEST(SceneValidation, ADefaultMadeWrongPointsAtTheSectionWritten) {
-  std::string m = refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {analysis: dynamic, duration: 0.0005}\n");
+  std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nsolve: {analysis: dynamic, duration: 0.0005}\n");
   expect_contains(m, "test.yaml:2:8: key 'solve.dt': value 0.001 is out of range; expected dt <= duration");
 }
 

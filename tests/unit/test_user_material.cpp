@@ -36,18 +36,7 @@ const bool registered = register_material("scaled_linear", {"scale"}, [](const M
 
 const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
 
-std::string refusal(const std::string& yaml) {
-  try {
-    testing::scene_from_text(yaml);
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
-
-void expect_contains(const std::string& text, const std::string& part) {
-  EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
-}
+using testing::expect_contains;
 
 TEST(UserMaterial, ChosenByNameEvaluatedAsRegisteredAndEchoed) {
   ASSERT_TRUE(registered);
@@ -73,15 +62,15 @@ TEST(UserMaterial, ChosenByNameEvaluatedAsRegisteredAndEchoed) {
 }
 
 TEST(UserMaterial, ParametersAreRefusedAsAnyKeyIs) {
-  expect_contains(refusal(box + "material: {model: scaled_linear}"), "missing 'parameters': model 'scaled_linear' needs scale");
-  const std::string unknown = refusal(box + "material: {model: scaled_linear, parameters: {scale: 1, sacle: 2}}");
+  expect_contains(testing::scene_refusal(box + "material: {model: scaled_linear}"), "missing 'parameters': model 'scaled_linear' needs scale");
+  const std::string unknown = testing::scene_refusal(box + "material: {model: scaled_linear, parameters: {scale: 1, sacle: 2}}");
   expect_contains(unknown, "material.parameters.sacle");
   expect_contains(unknown, "expected one of: scale");
-  expect_contains(refusal(box + "material: {model: scaled_linear, parameters: {}}"), "missing 'scale'");
-  expect_contains(refusal(box + "material: {model: scaled_linear, parameters: {scale: soft}}"), "expected a number");
-  expect_contains(refusal(box + "material: {model: linear, parameters: {scale: 1}}"),
+  expect_contains(testing::scene_refusal(box + "material: {model: scaled_linear, parameters: {}}"), "missing 'scale'");
+  expect_contains(testing::scene_refusal(box + "material: {model: scaled_linear, parameters: {scale: soft}}"), "expected a number");
+  expect_contains(testing::scene_refusal(box + "material: {model: linear, parameters: {scale: 1}}"),
                   "parameters are for a law registered from outside kerf; model 'linear' takes young and poisson only");
-  const std::string unknown_model = refusal(box + "material: {model: mooney}");
+  const std::string unknown_model = testing::scene_refusal(box + "material: {model: mooney}");
   expect_contains(unknown_model, "expected one of linear | corotational | stvk | neohookean | scaled_linear");
 }
 
