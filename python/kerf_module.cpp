@@ -65,12 +65,16 @@ struct Result {
   std::shared_ptr<const BodySnapshot> body;
 
   py::array points() const { return view(body->points.data()->data(), body->points.size(), 3, sizeof(Vec3), body); }
-  py::dict point_fields() const {
-    py::dict fields;
-    for (const OutputField& f : body->point_fields)
-      fields[py::str(f.name)] = view(f.values.data(), f.values.size() / f.components, f.components,
-                                     f.components * sizeof(double), body);
-    return fields;
+  py::dict point_fields() const { return fields(body->point_fields); }
+  py::dict cell_fields() const { return fields(body->cell_fields); }
+
+ private:
+  py::dict fields(const std::vector<OutputField>& list) const {
+    py::dict views;
+    for (const OutputField& f : list)
+      views[py::str(f.name)] = view(f.values.data(), f.values.size() / f.components, f.components,
+                                    f.components * sizeof(double), body);
+    return views;
   }
 };
 
@@ -146,7 +150,10 @@ PYBIND11_MODULE(_kerf, m) {
       .def_property_readonly("points", &Result::points,
                              "the reference positions of the body's output points (n x 3, m), a read-only view")
       .def_property_readonly("point_fields", &Result::point_fields,
-                             "every point field ParaView gets (displacement, von_mises, ...), read-only views")
+                             "every point field ParaView gets (displacement; meshless: stress, von_mises, ...), "
+                             "read-only views")
+      .def_property_readonly("cell_fields", &Result::cell_fields,
+                             "every cell field ParaView gets (FEM: stress, von_mises per cell), read-only views")
       .def_property_readonly("displacement",
                              [](const Result& r) -> py::object {  // an object, not an accessor of a dict gone
                                const py::dict fields = r.point_fields();

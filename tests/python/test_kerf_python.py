@@ -41,6 +41,8 @@ def test_arrays_are_read_only_views_of_the_final_body(tmp_path):
     assert points.shape == (result.summary["counts"]["nodes"], 3) and u.shape == points.shape
     assert not points.flags.writeable and not points.flags.owndata  # kerf's memory, not a copy
     assert set(result.point_fields) >= {"displacement"}
+    von_mises = result.cell_fields["von_mises"]  # FEM: per cell
+    assert von_mises.shape == (result.summary["counts"]["elements"], 1) and (von_mises > 0).all()
     # The tip probe is a point of the mesh's corner (0.1, 0.01, 0.01): its row holds the probe's value.
     tip = numpy.argmin(numpy.linalg.norm(points - [0.1, 0.01, 0.01], axis=1))
     if numpy.linalg.norm(points[tip] - [0.1, 0.01, 0.01]) < 1e-12:
