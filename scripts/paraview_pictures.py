@@ -10,8 +10,8 @@ import os
 import re
 import sys
 
-from paraview.simple import (ColorBy, CreateView, ExtractBlock, GetAnimationScene, MergeBlocks, PVDReader,
-                             Render, SaveScreenshot, Show, WarpByVector)
+from paraview.simple import (ColorBy, CreateView, ExtractBlock, GetAnimationScene, GetColorTransferFunction,
+                             GetScalarBar, MergeBlocks, PVDReader, Render, SaveScreenshot, Show, WarpByVector)
 
 
 def part_names(pvd):
@@ -39,6 +39,9 @@ def render_last_step(pvd, png, size):
     ColorBy(shown, ("CELLS" if "von_mises" in body.CellData.keys() else "POINTS", "von_mises"))  # FEM: per cell
     shown.RescaleTransferFunctionToDataRange(True)
     shown.SetScalarBarVisibility(view, True)
+    bar = GetScalarBar(GetColorTransferFunction("von_mises"), view)
+    bar.Title, bar.ComponentTitle = "von Mises (Pa)", ""
+    bar.TitleColor = bar.LabelColor = [0.0, 0.0, 0.0]  # the palette's white on a white background
     if body.GetDataInformation().GetNumberOfCells() == body.GetDataInformation().GetNumberOfPoints():
         shown.SetRepresentationType("Points")  # a meshless body: its nodes
         shown.PointSize = 5
