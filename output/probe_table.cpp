@@ -28,7 +28,8 @@ void ProbeTable::append(const std::vector<double>& row) {
   char cell[32];
   for (std::size_t i = 0; i < row.size(); ++i) {
     std::snprintf(cell, sizeof cell, "%.10g", row[i]);
-    line += (i ? "," : "") + std::string(cell);
+    if (i) line += ',';
+    line += cell;  // (const char* + std::string met GCC 12's false -Wrestrict, PR 105329)
   }
   line += "\n";
   KERF_CHECK(std::fwrite(line.data(), 1, line.size(), file_) == line.size(), "cannot write ", path_);
