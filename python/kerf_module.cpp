@@ -7,6 +7,7 @@
 #include <pybind11/stl.h>
 
 #include <filesystem>
+#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -64,7 +65,10 @@ struct Result {
   py::object summary;
   std::shared_ptr<const BodySnapshot> body;
 
-  py::array points() const { return view(body->points.data()->data(), body->points.size(), 3, sizeof(Vec3), body); }
+  py::array points() const {
+    if (body->points.empty()) return py::array_t<double>(std::vector<py::ssize_t>{0, 3});
+    return view(body->points.data()->data(), body->points.size(), 3, sizeof(Vec3), body);
+  }
   py::dict point_fields() const { return fields(body->point_fields); }
   py::dict cell_fields() const { return fields(body->cell_fields); }
 
@@ -105,9 +109,9 @@ py::object study(const std::string& name, bool quick, const std::string& out, bo
     const InterruptScope interrupt;  // one for the study: a signal between its runs is kept
     run_study(name, options);
   }
-  const std::string path = options.out_dir + "/" + name + ".json";
-  if (!std::filesystem::exists(path)) return py::none();
-  return py::module_::import("json").attr("load")(py::module_::import("builtins").attr("open")(path));
+  std::ifstream file(options.out_dir + "/" + name + ".json");
+  if (!file) return py::none();
+  return to_python(json::parse(file));
 }
 
 }  // namespace
