@@ -43,10 +43,11 @@ def test_arrays_are_read_only_views_of_the_final_body(tmp_path):
     assert set(result.point_fields) >= {"displacement"}
     von_mises = result.cell_fields["von_mises"]  # FEM: per cell
     assert von_mises.shape == (result.summary["counts"]["elements"], 1) and (von_mises > 0).all()
-    # The tip probe is a point of the mesh's corner (0.1, 0.01, 0.01): its row holds the probe's value.
+    # The node nearest the tip probe (0.1, 0.01, 0.01) is on the end face, 0.4 mm off it: its
+    # vertical displacement is the probe's to 1e-3 (measured 4e-7; the end face barely bends).
     tip = numpy.argmin(numpy.linalg.norm(points - [0.1, 0.01, 0.01], axis=1))
-    if numpy.linalg.norm(points[tip] - [0.1, 0.01, 0.01]) < 1e-12:
-        assert list(u[tip]) == pytest.approx(result.probes["tip"]["displacement"], rel=1e-12)
+    assert numpy.linalg.norm(points[tip] - [0.1, 0.01, 0.01]) < 1e-3
+    assert u[tip, 2] == pytest.approx(result.probes["tip"]["displacement"][2], rel=1e-3)
     assert u[:, 2].min() < 0.0  # it sags
     del result  # the arrays keep the body alive
     assert numpy.isfinite(u).all() and u[:, 2].min() < 0.0
