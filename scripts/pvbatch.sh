@@ -13,4 +13,15 @@ if [ ! -d "$modules/usr/lib/python3/dist-packages/paraview" ]; then
     rm -f python3-paraview_*.deb) || { echo "pvbatch.sh: could not fetch python3-paraview (apt-get download)"; exit 1; }
 fi
 export PYTHONPATH="$modules/usr/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
-exec xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch "$@"
+# xvfb-run's server is sometimes not ready for pvbatch's first connection
+# (seen once under ctest -j2: "bad X server connection", SIGABRT): a second
+# server is tried then, once; any other failure is pvbatch's own.
+log=$(mktemp)
+trap 'rm -f "$log"' EXIT
+for attempt in 1 2; do
+  status=0
+  xvfb-run -a -s "-screen 0 1280x1024x24" pvbatch "$@" 2>&1 | tee "$log" || status=$?
+  grep -q "bad X server connection" "$log" || exit "$status"
+  echo "pvbatch.sh: the X server was not ready (attempt $attempt)"
+done
+exit 1
