@@ -117,11 +117,25 @@ NodeSet mesh_nodes(const Mesh& input, double support_factor) {
       }
     }
   }
+  s.on_boundary = boundary_node_flags(mesh, boundary_facets(mesh));
+  // The spacing of a lattice with the same number of nodes per volume: the
+  // mean edge length at each node (which follows a graded mesh), times the
+  // mesh's own ratio of V^(1/d) to it over the interior nodes (a lattice's
+  // interior node holds h^d). Without it a support of 2.2 spacings covers
+  // about 1.4 times as many nodes on a gmsh mesh as on a lattice (54-62
+  // against 44 neighbours measured), and nodal integration is that much softer.
+  double root_sum = 0.0, edge_mean_sum = 0.0;
   for (Index i = 0; i < count; ++i) {
-    s.spacing.push_back(edge_sum[i] / edge_count[i]);
+    if (s.on_boundary[i] || edge_count[i] == 0) continue;
+    root_sum += std::pow(s.volume[i], 1.0 / dim);
+    edge_mean_sum += edge_sum[i] / edge_count[i];
+  }
+  const double ratio = edge_mean_sum > 0.0 ? root_sum / edge_mean_sum : 1.0;  // no interior node: the edges
+  for (Index i = 0; i < count; ++i) {
+    KERF_CHECK(edge_count[i] > 0, "mesh node ", i, " belongs to no cell: meshless nodes need every node in a cell");
+    s.spacing.push_back(ratio * edge_sum[i] / edge_count[i]);
     s.support.push_back(support_factor * s.spacing.back());
   }
-  s.on_boundary = boundary_node_flags(mesh, boundary_facets(mesh));
   return s;
 }
 

@@ -92,5 +92,25 @@ TEST(NodeSet, MeshNodesAreTheCornersWithTheMeshVolume) {
   }
 }
 
+// A mesh node's spacing is that of a lattice as dense: over the interior
+// nodes, spacing^d averages the nodal volume (a lattice's interior node holds
+// h^d), also on a graded mesh, so `support` covers as many nodes on a mesh as
+// on a lattice (the mean edge length alone made supports 1.12 times as wide
+// on gmsh tets: 1.4 times the neighbours).
+TEST(NodeSet, MeshNodeSpacingIsTheEquivalentLatticeSpacing) {
+  for (int dim : {2, 3}) {
+    const Mesh mesh = testing::unit_box_mesh(dim, 1, dim == 3 ? 0.1 : 0.04);
+    const NodeSet s = mesh_nodes(mesh, 2.2);
+    double spacing_power = 0.0, volume = 0.0;
+    for (Index i = 0; i < s.size(); ++i) {
+      if (s.on_boundary[i]) continue;
+      spacing_power += std::pow(s.spacing[i], dim);
+      volume += s.volume[i];
+      EXPECT_DOUBLE_EQ(s.support[i], 2.2 * s.spacing[i]);
+    }
+    EXPECT_NEAR(spacing_power / volume, 1.0, 0.05) << dim << "D";
+  }
+}
+
 }  // namespace
 }  // namespace kerf
