@@ -13,6 +13,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/types.h"
@@ -70,6 +71,15 @@ class DiscreteBody {
   virtual double strain_energy(const Vector& u) const = 0;
   /// True when f_int is linear in u: the stiffness never changes.
   virtual bool is_linear() const = 0;
+  /// False when the forces are tested with other functions than the
+  /// displacement is made of (a Petrov-Galerkin body, as nodal integration
+  /// with VCI): K is then not symmetric, and f_int is not the gradient of
+  /// strain_energy.
+  virtual bool symmetric_tangent() const { return true; }
+  /// K(u) with the test functions equal to the trial ones (symmetric, and
+  /// positive definite where the body is held): what a solver factorizes to
+  /// precondition an unsymmetric tangent. The tangent itself for a Galerkin body.
+  virtual void galerkin_tangent(const Vector& u, const BlockSink& sink) const { tangent(u, sink, nullptr); }
 
   /// Diagonal mass (kg per dof).
   virtual Vector lumped_mass() const = 0;
@@ -85,6 +95,10 @@ class DiscreteBody {
   /// How to evaluate u at x, or nullopt when x lies outside the body.
   virtual std::optional<PointInterpolation> interpolation_at(const Vec3& x) const = 0;
   virtual void snapshot(const Vector& u, BodySnapshot& out) const = 0;
+
+  /// What is known of one dof, for a failed solve's message: the node, where
+  /// it lies, its component, and what acts on it.
+  virtual std::string describe_dof(Index dof) const;
 
   /// Counts for the summary: cells (FEM) or integration points (meshless).
   virtual Index element_count() const = 0;

@@ -95,9 +95,13 @@ json scene_to_json(const Scene& s) {
         {"basis", to_string(ml.basis)},
         {"weight", to_string(ml.weight)},
         {"quadrature", {{"order", ml.quadrature_order}}},
-        {"essential", to_string(ml.essential)},
+        {"essential", to_string(essential_method(ml, d.method))},
         {"stabilization", ml.stabilization},
-        {"gradient", to_string(ml.gradient)}}}};
+        {"gradient", to_string(ml.gradient)},
+        {"vci", to_string(ml.vci)}}}};
+  // Only where it acts: a resolved scene must read back (it is refused elsewhere).
+  if (essential_method(ml, d.method) == EssentialMethod::nitsche)
+    j["discretization"]["meshless"]["nitsche_safety"] = nitsche_safety(ml, d.method);
   json boundary = json::array();
   for (const auto& bc : s.boundary) boundary.push_back(boundary_json(bc, dim));
   j["boundary"] = boundary;

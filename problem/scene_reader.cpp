@@ -159,7 +159,8 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
   }
   if (f.has("meshless")) {
     YamlField m = f["meshless"];
-    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient"});
+    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient", "vci",
+                  "nitsche_safety"});
     MeshlessOptions& o = d.meshless;
     if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
@@ -175,6 +176,8 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
       o.essential = m["essential"].enumeration<EssentialMethod>();
     if (m.has("stabilization")) o.stabilization = m["stabilization"].boolean();
     if (m.has("gradient")) o.gradient = m["gradient"].enumeration<NodalGradient>();
+    if (m.has("vci")) o.vci = m["vci"].enumeration<VciOrder>();
+    if (m.has("nitsche_safety")) o.nitsche_safety = m["nitsche_safety"].number();
   }
 }
 

@@ -120,6 +120,13 @@ void validate_discretization(const Refusal& r, const DiscretizationOptions& d, i
   r.in_range(m.support > 1.0, "discretization.meshless.support", m.support, "support > 1 (a multiple of the spacing)");
   r.in_range(m.quadrature_order >= 1 && m.quadrature_order <= 8, "discretization.meshless.quadrature.order",
              m.quadrature_order, "1 <= order <= 8");
+  if (m.nitsche_safety)
+    r.in_range(*m.nitsche_safety >= 1.0 && *m.nitsche_safety <= 1e6, "discretization.meshless.nitsche_safety",
+               *m.nitsche_safety, "1 <= nitsche_safety <= 1e6 (alpha over its local estimate)");
+  if (m.nitsche_safety && d.method != Method::fem)
+    r.require(essential_method(m, d.method) == EssentialMethod::nitsche, "discretization.meshless.nitsche_safety",
+              "is given but discretization.meshless.essential is '" +
+                  std::string(to_string(essential_method(m, d.method))) + "'; expected essential: nitsche");
 }
 
 void validate_boundary(const Refusal& r, const Scene& s) {
@@ -284,6 +291,14 @@ void validate(const Scene& scene) {
   validate_contact(r, scene);
   for (std::size_t i = 0; i < scene.cuts.size(); ++i) validate_cut(r, scene, scene.cuts[i], item("cuts", i));
   validate_solve(r, scene.solve);
+  // VCI's forces are not the gradient of an energy: undamped central
+  // differences on the tissue-sag slab grew without bound (inf at 10 s).
+  if (scene.discretization.method == Method::nodal && scene.discretization.meshless.vci == VciOrder::linear &&
+      scene.solve.analysis == Analysis::dynamic)
+    r.require(scene.solve.integrator == Integrator::implicit_euler, "discretization.meshless.vci",
+              "value 'linear' with solve.integrator '" + std::string(to_string(scene.solve.integrator)) +
+                  "': its unsymmetric stiffness gains energy in an integrator that does not dissipate it; expected "
+                  "vci: none, or solve.integrator: implicit-euler");
   r.in_range(scene.output.vtk_every >= 0, "output.vtk.every", scene.output.vtk_every, "every >= 0 (steps; 0: none)");
   for (std::size_t i = 0; i < scene.output.probes.size(); ++i) validate_probe(r, scene, i);
 }

@@ -49,12 +49,16 @@ class CholmodSolver final : public LinearSolver {
     cholmod_sparse view = wrap(A);
     cholmod_factorize(&view, factor_, &common_);
     if (common_.status == CHOLMOD_NOT_POSDEF) {
+      // The failed pivot, in the matrix's own numbering (the factor's is permuted).
+      const Index column = static_cast<Index>(factor_->minor);
+      const auto* permutation = static_cast<const int*>(factor_->Perm);
+      const Index row = permutation && column < A.rows() ? permutation[column] : column;
       std::ostringstream why;
-      why << "cholmod: the matrix is not positive definite (pivot " << factor_->minor << " of " << A.rows()
-          << " failed): the body is singular (not enough constraints to remove rigid motion?) or the "
-             "material became unstable (a nonlinear material's tangent turns indefinite under compression: "
-             "solve.tangent: definite assembles it made positive semidefinite)";
-      return LinearSolverStatus::failure(why.str());
+      why << "cholmod: the matrix is not positive definite (pivot " << column << " of " << A.rows()
+          << " failed, at row " << row << ")";
+      LinearSolverStatus status = LinearSolverStatus::failure(why.str());
+      status.failed_row = row;
+      return status;
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
     return LinearSolverStatus::success();

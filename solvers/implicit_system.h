@@ -6,6 +6,11 @@
 // A is not factorized again, and with a direct backend a changed A is first solved by conjugate gradients
 // preconditioned with the last factorization, refactorizing only when those
 // need more than a few iterations (the answer is the same to the tolerance).
+// A body whose stiffness is not symmetric (nodal integration with VCI) is
+// solved by GMRES preconditioned with the backend's factorization of its
+// Galerkin counterpart (test functions equal to the trial ones: symmetric,
+// and positive definite when the body is held; A's own symmetric part need
+// not be); serial only for now.
 #include <memory>
 
 #include "core/run_report.h"
@@ -55,6 +60,8 @@ class ImplicitSystem {
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
   bool analyzed_ = false;
   bool reuse_factorization_ = false;  // direct backend: precondition CG with a stale factor
+  bool symmetric_ = true;  // false: GMRES on A, the factor of its Galerkin counterpart preconditioning
+  SparseMatrix galerkin_;  // the Galerkin tangent, in K's pattern, when K is not symmetric
   bool factor_stale_ = false;         // A changed since the last factorization
   double linear_tolerance_;           // relative residual of the preconditioned CG
   Vector previous_solution_;          // warm start of the next preconditioned CG
@@ -70,6 +77,10 @@ class ImplicitSystem {
   /// Conjugate gradients on A_ff preconditioned by the stale factor; false if
   /// it needs more than the allowed iterations.
   bool preconditioned_cg(const Vector& b, Vector& x, const std::string& where);
+  /// GMRES on A_ff (not symmetric) preconditioned by the (maybe stale) factor of its Galerkin counterpart.
+  Vector solve_unsymmetric(const Vector& b, const std::string& where);
+  /// K assembled: the Galerkin counterpart too when K is not symmetric.
+  void stiffness_assembled(const Vector& u);
 };
 
 }  // namespace kerf

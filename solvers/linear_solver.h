@@ -2,6 +2,7 @@
 // Sparse symmetric positive-definite solves behind one interface. The matrix is
 // row-major CSR with full symmetric storage; its pattern is fixed after analyze().
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "core/run_report.h"
@@ -14,8 +15,9 @@ namespace kerf {
 struct LinearSolverStatus {
   bool ok = true;
   std::string message;
+  std::optional<Index> failed_row;  // a direct solver's failed pivot, in the matrix's numbering
   static LinearSolverStatus success() { return {}; }
-  static LinearSolverStatus failure(std::string why) { return {false, std::move(why)}; }
+  static LinearSolverStatus failure(std::string why) { return {false, std::move(why), std::nullopt}; }
 };
 
 class LinearSolver {

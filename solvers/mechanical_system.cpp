@@ -60,6 +60,13 @@ Vec3 MechanicalSystem::dof_position(Index dof) const {
   return dof < body_dofs_ ? body_.node_position(dof / dim) : contact_->centre((dof - body_dofs_) / dim);
 }
 
+std::string MechanicalSystem::describe_dof(Index dof) const {
+  if (dof < body_dofs_) return body_.describe_dof(dof);
+  const int dim = dofs_per_node();
+  return "dof " + std::to_string(dof) + ": the translation of contact sphere " + std::to_string((dof - body_dofs_) / dim) +
+         ", component " + "xyz"[(dof - body_dofs_) % dim];
+}
+
 void MechanicalSystem::visit_couplings(const CouplingVisitor& visit) const {
   body_.visit_couplings(visit);
   if (contact_) contact_->visit_couplings(visit);
@@ -105,6 +112,14 @@ void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f)
     tangent_with([&](const Vector& body_u, Vector* body_f) { body_.tangent(body_u, sink, body_f); }, u, sink, f);
   }
   if (rank_sum_ && f) rank_sum_->sum(*f);  // K stays this rank's part: the solver adds the parts
+}
+
+void MechanicalSystem::galerkin_tangent_into(const Vector& u, SparseMatrix& K) const {
+  const BlockSink sink = add_into(K);
+  tangent_with([&](const Vector& body_u, Vector* body_f) {
+    body_.galerkin_tangent(body_u, sink);
+    if (body_f) body_.internal_force(body_u, *body_f);
+  }, u, sink, nullptr);
 }
 
 void MechanicalSystem::tangent_with(const BodyTangent& body_tangent, const Vector& u, const BlockSink& sink,

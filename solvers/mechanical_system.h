@@ -61,6 +61,13 @@ class MechanicalSystem {
   void tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const;
   /// Linear in u: a linear body without contact.
   bool is_linear() const { return body_.is_linear() && !contact_; }
+  /// The body's (contact's terms are symmetric).
+  bool symmetric_tangent() const { return body_.symmetric_tangent(); }
+  /// The body's Galerkin tangent (its test functions its trial ones) and the
+  /// contact terms into K: what preconditions an unsymmetric tangent.
+  void galerkin_tangent_into(const Vector& u, SparseMatrix& K) const;
+  /// What is known of a dof (a sphere's: which sphere), for a failed solve's message.
+  std::string describe_dof(Index dof) const;
   /// A linear body with contact: its stiffness may be assembled once
   /// (body().tangent) and only the terms' part (add_terms) each time.
   bool linear_body_with_terms() const { return body_.is_linear() && contact_; }

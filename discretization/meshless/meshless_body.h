@@ -4,10 +4,14 @@
 // cuts' lattices and the MLS conditioning all come from their MeshlessDomain;
 // loads are dead (assembled once, f_ext = load_); no cheap critical-step bound
 // (the stepper's Lanczos bound is used).
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "discretization/body_capabilities.h"
+#include "discretization/meshless/integration_constraint.h"
 #include "discretization/meshless/meshless_domain.h"
+#include "discretization/meshless/weak_boundary_conditions.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -44,14 +48,47 @@ class MeshlessBody : public DiscreteBody,
       extras["mls_condition_near_cut_max"] = c.near_cut_max;
       extras["mls_condition_near_tip_max"] = c.near_tip_max;
     }
+    // The integration constraint, tested as the forces are: the largest
+    // residual over set-up and, with VCI, every cut growth.
+    extras["ic_residual_max"] = constraint_worst_.max;
+    extras["ic_residual_rms"] = constraint_worst_.rms;
+    extras["ic_residual_setup_max"] = constraint_setup_.max;
+    extras["ic_boundary_points_singular"] = static_cast<double>(domain_.boundary_points_singular());
+    if (corrected_) {
+      extras["ic_residual_uncorrected_max"] = uncorrected_worst_.max;
+      extras["ic_residual_uncorrected_rms"] = uncorrected_worst_.rms;
+    }
   }
 
   const MeshlessDomain& domain() const { return domain_; }
+
+  /// The node, its MLS conditioning and the weak conditions its support reaches.
+  std::string describe_dof(Index dof) const override {
+    const Index node = dof / dofs_per_node();
+    std::string out = DiscreteBody::describe_dof(dof) + ", MLS condition number " +
+                      std::to_string(domain_.at_nodes().condition[node]);
+    if (const WeakBoundaryConditions* weak = weak_conditions()) out += weak->describe_node(node);
+    return out;
+  }
 
  protected:
   MeshlessBody(const Scene& scene, MeshlessDomain domain)
       : domain_(std::move(domain)), law_(scene.material, scene.solve.tangent == TangentKind::definite), density_(scene.material.density),
         scene_(scene) {}
+
+  /// The body's weakly imposed conditions (null when none).
+  virtual const WeakBoundaryConditions* weak_conditions() const { return nullptr; }
+
+  /// Records the integration constraint's residual as it stands (set-up, a
+  /// cut's growth): `tested` with the forces' test gradients, `uncorrected`
+  /// with the plain MLS ones when a correction is on (else empty).
+  void record_constraint(const ConstraintResidual& tested, std::optional<ConstraintResidual> uncorrected) {
+    if (constraint_setup_.worst < 0) constraint_setup_ = tested;
+    if (tested.max >= constraint_worst_.max) constraint_worst_ = tested;
+    if (!uncorrected) return;
+    corrected_ = true;
+    if (uncorrected->max >= uncorrected_worst_.max) uncorrected_worst_ = *uncorrected;
+  }
 
   MeshlessDomain domain_;
   MaterialLaw law_;
@@ -59,6 +96,10 @@ class MeshlessBody : public DiscreteBody,
   Vector load_;     // dead loads (N)
   std::vector<DirichletDof> dirichlet_;
   Scene scene_;  // the loads, integrated again when a growing cut changes their shape functions
+
+ private:
+  ConstraintResidual constraint_setup_, constraint_worst_, uncorrected_worst_;
+  bool corrected_ = false;
 };
 
 }  // namespace kerf

@@ -7,6 +7,7 @@
 #include "core/check.h"
 #include "discretization/enrichment/enrichment_grid.h"
 #include "discretization/fem/simplex_quadrature.h"
+#include "discretization/meshless/integration_constraint.h"
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/prescribed_dofs.h"
 #include "geometry/neighbor_search.h"
@@ -39,15 +40,13 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     auto bb = bounding_box(*background_);
     domain_size_ = (bb[1] - bb[0]).norm();
   }
-  if (background_) {
-    facets_ = boundary_facets(*background_);
-    background_on_boundary_ = boundary_node_flags(*background_, facets_);
-  }
+  facets_ = boundary_facets(boundary_mesh());
+  background_on_boundary_ = boundary_node_flags(boundary_mesh(), facets_);
   index_ = std::make_unique<SupportIndex>(nodes_.positions, nodes_.support);
   growing_ = cuts->grows();
   if (cuts->cut_count() > 0)
     enrichment_ = std::make_unique<CutWeights>(std::move(cuts), *index_, 0.0);
-  if (growing_ && background_) {
+  if (growing_) {
     std::vector<Vec3> points;
     for (const BoundaryCondition& bc : scene.boundary)
       if (!bc.is_dirichlet()) {
@@ -65,6 +64,105 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     at_nodes_ = shape_table(nodes_, *index_, basis_, nodes_.positions, "the node", error_context_, mls_remedy(),
                             enrichment(), true);
   }
+  build_boundary_terms(scene);
+}
+
+BoundaryQuadrature MeshlessDomain::closed_boundary_facets(const Scene& scene) const {
+  // 2 points a direction (nodal integration's weak conditions' rule), 3 where loads act (their rule).
+  std::vector<int> per_direction(facets_.count(), 2);
+  for (const BoundaryCondition& bc : scene.boundary)
+    if (!bc.is_dirichlet())
+      for (Index f : facets_in(bc.select, false)) per_direction[f] = 3;
+  return facet_quadrature(boundary_mesh(), facets_, per_direction);
+}
+
+BoundaryQuadrature MeshlessDomain::cut_faces(Index cut, Index first_piece, Index end_piece) const {
+  const double hair = 1e-10 * *std::min_element(nodes_.spacing.begin(), nodes_.spacing.end());
+  BoundaryQuadrature out;
+  std::vector<Index> near;
+  for (Index p = first_piece; p < end_piece; ++p) {
+    const CutPiece& piece = enrichment_->surface(cut).pieces[p];
+    double reach = 0.0;
+    for (int k = 0; k < dimension(); ++k) reach = std::max(reach, (piece.corner[k] - piece.centre).norm());
+    index_->within(piece.centre, reach + longest_edge_, near);
+    out.append(cut_face_quadrature(nodes_.cells, cells_near(cells_around_, near), piece, hair));
+  }
+  return out;
+}
+
+namespace {
+
+/// Per node the slots of `lists` holding it, and per slot its row: what
+/// lists_holding needs to find the rows a set of nodes appears in.
+void transpose_rows(const NeighborLists& lists, Index node_count, NeighborLists& users, std::vector<Index>& slot_row) {
+  users = transpose_slots(lists, node_count);
+  slot_row.resize(lists.index.size());
+  for (Index p = 0; p < lists.size(); ++p)
+    std::fill(slot_row.begin() + lists.start[p], slot_row.begin() + lists.start[p + 1], p);
+}
+
+}  // namespace
+
+ShapeTable MeshlessDomain::boundary_shapes_at(std::span<const Vec3> points) const {
+  // A figure must not stop a run: a point no MLS fits (every node hidden by a
+  // cut there) is left out and counted.
+  return shape_table(nodes_, *index_, basis_, points, "a point of the boundary (integration constraint)",
+                     error_context_, mls_remedy(), enrichment(), growing_, &boundary_singular_);
+}
+
+void MeshlessDomain::build_boundary_terms(const Scene& scene) {
+  boundary_terms_.assign(dimension() * nodes_.size(), 0.0);
+  BoundaryQuadrature points = closed_boundary_facets(scene);
+  if (enrichment_) {
+    cells_around_ = node_cells(nodes_.cells);
+    const int corners = dimension() + 1;
+    for (Index c = 0; c < nodes_.cells.cell_count(); ++c)
+      for (int a = 0; a < corners; ++a)
+        for (int b = a + 1; b < corners; ++b)
+          longest_edge_ = std::max(longest_edge_, (nodes_.cells.nodes[nodes_.cells.cell(c)[a]] -
+                                                   nodes_.cells.nodes[nodes_.cells.cell(c)[b]]).norm());
+    faces_taken_.assign(enrichment_->cut_count(), 0);
+    for (Index c = 0; c < enrichment_->cut_count(); ++c) {
+      points.append(cut_faces(c, 0, enrichment_->pieces(c)));
+      faces_taken_[c] = enrichment_->pieces(c);
+    }
+  }
+  if (!growing_) {
+    add_boundary_terms(boundary_shapes_at(points.position), points, boundary_terms_);
+    return;
+  }
+  // A growing cut: every point's shape functions are kept, to refresh the
+  // rows holding a node whose weights a growth changes (as at the nodes).
+  boundary_points_ = std::move(points);
+  boundary_shapes_ = boundary_shapes_at(boundary_points_.position);
+  add_boundary_terms(boundary_shapes_, boundary_points_, boundary_terms_);
+}
+
+void MeshlessDomain::update_boundary_terms() {
+  if (!growing_) return;
+  const std::vector<Index> changed = std::move(boundary_pending_);
+  boundary_pending_.clear();
+  const std::string what = "a point of the boundary (integration constraint)";
+  if (boundary_users_.size() == 0)
+    transpose_rows(boundary_shapes_.neighbours, nodes_.size(), boundary_users_, boundary_slot_row_);
+  const std::vector<Index> rows =
+      lists_holding(boundary_users_, boundary_slot_row_, boundary_shapes_.point_count(), changed);
+  if (!rows.empty())
+    refresh_shape_rows(boundary_shapes_, nodes_, basis_, boundary_points_.position, rows, *enrichment_, what,
+                       error_context_, mls_remedy(), &boundary_singular_);
+  // The faces of the new pieces join the points.
+  BoundaryQuadrature added;
+  for (Index c = 0; c < enrichment_->cut_count(); ++c) {
+    added.append(cut_faces(c, faces_taken_[c], enrichment_->pieces(c)));
+    faces_taken_[c] = enrichment_->pieces(c);
+  }
+  if (added.size() > 0) {
+    append_rows(boundary_shapes_, boundary_shapes_at(added.position));
+    boundary_points_.append(added);
+    boundary_users_ = {};  // rebuilt with the new rows at the next growth
+  }
+  boundary_terms_.assign(boundary_terms_.size(), 0.0);
+  add_boundary_terms(boundary_shapes_, boundary_points_, boundary_terms_);
 }
 
 MeshlessDomain::~MeshlessDomain() = default;
@@ -96,13 +194,7 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
   std::vector<Index> changed = enrichment_->advance_to(t);
   if (changed.empty()) return changed;
   // The rows a changed node appears in, from the transposed neighbour lists.
-  if (covered_.size() == 0) {
-    const NeighborLists& lists = at_nodes_.neighbours;
-    covered_ = transpose_slots(lists, nodes_.size());
-    slot_row_.resize(lists.index.size());
-    for (Index p = 0; p < lists.size(); ++p)
-      std::fill(slot_row_.begin() + lists.start[p], slot_row_.begin() + lists.start[p + 1], p);
-  }
+  if (covered_.size() == 0) transpose_rows(at_nodes_.neighbours, nodes_.size(), covered_, slot_row_);
   std::vector<Index> touched = lists_holding(covered_, slot_row_, nodes_.size(), changed);
   if (smoothing_) {
     smoothing_->set_cuts(*enrichment_, nodes_);
@@ -113,6 +205,11 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
                                  error_context_, mls_remedy());
   }
   if (rows) *rows = std::move(touched);
+  if (growing_) {  // the boundary terms wait for update_boundary_terms (costly: only VCI needs them each growth)
+    boundary_pending_.insert(boundary_pending_.end(), changed.begin(), changed.end());
+    std::sort(boundary_pending_.begin(), boundary_pending_.end());
+    boundary_pending_.erase(std::unique(boundary_pending_.begin(), boundary_pending_.end()), boundary_pending_.end());
+  }
   return changed;
 }
 
@@ -183,7 +280,7 @@ std::optional<PointInterpolation> MeshlessDomain::interpolation_at(const Vec3& x
 }
 
 std::vector<Index> MeshlessDomain::facets_in(const Selection& selection, bool required) const {
-  const Mesh& mesh = background();
+  const Mesh& mesh = boundary_mesh();
   std::vector<char> selected(mesh.nodes.size(), 0);
   for (Index n : select_points(selection, mesh.nodes, background_on_boundary_, domain_size_)) selected[n] = 1;
   const int corners = dimension();
@@ -200,7 +297,7 @@ std::vector<Index> MeshlessDomain::facets_in(const Selection& selection, bool re
 
 BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, int points_per_direction) const {
   const int dim = dimension(), fdim = dim - 1;
-  const Mesh& mesh = background();
+  const Mesh& mesh = boundary_mesh();
   QuadratureRule rule = collapsed_gauss(fdim, points_per_direction);
   BoundaryPoints out;
   for (Index f : facets) {
@@ -221,7 +318,7 @@ BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, in
 }
 
 SurfaceSamples MeshlessDomain::surface_samples(const Box& region, int points_per_direction) const {
-  const Mesh& mesh = background();
+  const Mesh& mesh = boundary_mesh();
   const int corners = dimension();
   std::vector<Index> facets;
   SurfaceSamples out;

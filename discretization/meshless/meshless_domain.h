@@ -13,6 +13,7 @@
 
 #include "discretization/body_capabilities.h"
 #include "discretization/enrichment/cut_weights.h"
+#include "discretization/meshless/boundary_quadrature.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "discretization/meshless/smoothed_gradient.h"
@@ -52,7 +53,21 @@ class MeshlessDomain {
   int dimension() const { return nodes_.dimension; }
   double domain_size() const { return domain_size_; }
   const Mesh& background() const;
+  /// The mesh whose boundary facets bound the body: the background mesh, else the nodes' own cells.
+  const Mesh& boundary_mesh() const { return background_ ? *background_ : nodes_.cells; }
   const BoundaryFacets& facets() const { return facets_; }
+  /// Per node (dimension() entries each): the boundary term of the integration
+  /// constraint, sum_b psi_I(x_b) n_b w_b over the closed boundary (the
+  /// boundary facets and both faces of the cuts present), brought up to date
+  /// by update_shapes_for_cuts.
+  /// As of set-up or the last update_boundary_terms().
+  const std::vector<double>& boundary_terms() const { return boundary_terms_; }
+  /// Brings boundary_terms() to the cuts as they now stand (the faces of new
+  /// pieces, the rows whose weights the growths since changed).
+  void update_boundary_terms();
+  /// Points of the closed boundary left out of boundary_terms() because no
+  /// MLS fits there (every node hidden by a cut), counted at set-up and growths.
+  Index boundary_points_singular() const { return boundary_singular_; }
 
   /// The cuts' weight enrichment of the nodes (null without a cut present).
   const CutWeights* enrichment() const { return enrichment_ && enrichment_->present() ? enrichment_.get() : nullptr; }
@@ -106,6 +121,14 @@ class MeshlessDomain {
 
  private:
   std::string mls_remedy() const;
+  /// The closed boundary's quadrature points on the facets: 3 points a
+  /// direction where loads act (their rule), 2 elsewhere (the weak conditions' rule).
+  BoundaryQuadrature closed_boundary_facets(const Scene& scene) const;
+  BoundaryQuadrature cut_faces(Index cut, Index first_piece, Index end_piece) const;
+  /// boundary_terms_ from scratch; for a growing cut, the points and their
+  /// shape functions are kept to be updated.
+  void build_boundary_terms(const Scene& scene);
+  ShapeTable boundary_shapes_at(std::span<const Vec3> points) const;
 
   NodeSet nodes_;
   std::optional<Box> box_;
@@ -122,6 +145,18 @@ class MeshlessDomain {
   std::unique_ptr<SmoothedGradients> smoothing_;  // nodal with meshless.gradient: smoothed
   ShapeTable at_nodes_;  // smoothed gradients with smoothing_
   NeighborLists covered_;  // per node: the slots of at_nodes_ holding it (built at the first cut growth)
+  std::vector<double> boundary_terms_;  // the integration constraint's boundary term, per node
+  NodeCells cells_around_;              // nodes_.cells around each node (cuts: their faces' cells)
+  double longest_edge_ = 0.0;           // of nodes_.cells (m)
+  std::vector<Index> faces_taken_;      // per cut: pieces whose faces are in boundary_terms_
+  // A growing cut: the closed boundary's points, their shape functions and
+  // per node the slots holding it (built at the first growth after a change).
+  BoundaryQuadrature boundary_points_;
+  ShapeTable boundary_shapes_;
+  NeighborLists boundary_users_;
+  std::vector<Index> boundary_slot_row_;
+  std::vector<Index> boundary_pending_;  // nodes growths changed since the last update_boundary_terms
+  mutable Index boundary_singular_ = 0;  // boundary points left out, no MLS there (set-up and growths)
   std::vector<Index> slot_row_;  // per slot of at_nodes_: its row (built with covered_)
 };
 

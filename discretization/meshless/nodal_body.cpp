@@ -42,9 +42,16 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
 
 NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
-      stabilized_(scene.discretization.meshless.stabilization) {
-  share_nodes(share);
+      stabilized_(scene.discretization.meshless.stabilization),
+      vci_(scene.discretization.meshless.vci == VciOrder::linear) {
   const NodeSet& nodes = domain_.nodes();
+  const EssentialMethod essential = essential_method(scene.discretization.meshless, Method::nodal);
+  if (essential != EssentialMethod::parameters)
+    // 2 points a direction: the closed boundary's rule there (integration constraint).
+    constraints_ = std::make_unique<WeakBoundaryConditions>(
+        scene, domain_, law_, essential == EssentialMethod::nitsche, 2,
+        WeakBoundaryConditions::VolumePoints{domain_.at_nodes(), nodes.volume, nodes.positions});
+  share_nodes(share);
   if (stabilized_) {
     const std::size_t slots = domain_.at_nodes().neighbours.index.size();
     pairs_ = {std::vector<double>(slots, 0.0), std::vector<double>(3 * nodes.size(), 0.0),
@@ -59,7 +66,23 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
   body_load_ = load_;
   domain_.add_boundary_loads(scene, load_);
-  dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
+  if (constraints_)
+    dirichlet_ = domain_.nodal_constraints(
+        scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });
+  else
+    dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
+  correct_test_gradients();
+}
+
+void NodalBody::correct_test_gradients() {
+  const int dim = domain_.dimension();
+  const VolumeTerms volume = volume_terms(domain_.at_nodes(), domain_.nodes().volume, node_count());
+  const std::vector<double>& boundary = domain_.boundary_terms();
+  const ConstraintResidual plain = constraint_residual(boundary, volume, dim);
+  if (!vci_) return record_constraint(plain, std::nullopt);
+  test_offsets_ = consistent_offsets(domain_.at_nodes(), domain_.nodes().volume, boundary, volume);
+  const VolumeTerms tested = volume_terms(domain_.at_nodes(), domain_.nodes().volume, node_count(), test_offsets_);
+  record_constraint(constraint_residual(boundary, tested, dim), plain);
 }
 
 void NodalBody::share_nodes(RankShare share) {
@@ -69,6 +92,10 @@ void NodalBody::share_nodes(RankShare share) {
   std::vector<char> reached(node_count(), 0);
   for (Index I = own_nodes_.first; I < own_nodes_.second; ++I)
     for (Index J : domain_.at_nodes().neighbours.of(I)) reached[J] = 1;
+  if (constraints_) {
+    constraints_->share(share);
+    constraints_->mark_reached(reached);
+  }
   touched_nodes_ = touched_node_list(std::move(reached), own_nodes_);
 }
 
@@ -91,6 +118,17 @@ CutUpdate NodalBody::update_for_cuts(double t) {
     load_ = body_load_;
     domain_.add_boundary_loads(scene_, load_);
   }
+  if (constraints_) {
+    std::vector<char> moved(node_count(), 0);
+    for (Index I : changed) moved[I] = 1;
+    const NodeSet& nodes = domain_.nodes();
+    constraints_->update_for_cuts(domain_, moved,
+                                  WeakBoundaryConditions::VolumePoints{domain_.at_nodes(), nodes.volume, nodes.positions});
+  }
+  if (vci_) {  // the constraint after a growth costs a boundary update: only VCI needs it
+    domain_.update_boundary_terms();
+    correct_test_gradients();
+  }
   return update;
 }
 
@@ -103,6 +141,7 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
   const Index* index = table.neighbours.index.data();
   const double* g = table.gradient.data();
   const double* k = pairs_.stiffness.data();
+  const double* offset = test_offsets_.empty() ? nullptr : test_offsets_.data();
   const Vec3* x = nodes.positions.data();
   f.resize(dofs);
   // Sized here, not inside the region: an allocation failure must not be thrown in it.
@@ -145,10 +184,10 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
       const double* uI = &u[Dim * I];
       // q = V_I P - sum_J k_IJ e_IJ X_IJ^T, the second part through F_I's
       // dependence on the neighbours: sum_J k e X^T = d - u_I s_I^T - h M_I.
-      double q[Dim][Dim];
+      double q[Dim][Dim], vp[Dim][Dim];
       for (int i = 0; i < Dim; ++i)
         for (int l = 0; l < Dim; ++l) {
-          q[i][l] = nodes.volume[I] * P(i, l);
+          q[i][l] = vp[i][l] = nodes.volume[I] * P(i, l);
           if constexpr (Stabilized) {
             double hM = 0.0;
             for (int m = 0; m < Dim; ++m) hM += h[i][m] * pairs_.lever_moment[9 * I + 3 * m + l];
@@ -163,6 +202,8 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
         for (int i = 0; i < Dim; ++i) {
           double qg = 0.0;
           for (int l = 0; l < Dim; ++l) qg += q[i][l] * gs[l];
+          if (offset)  // VCI tests V P (not the Galerkin pair terms) with its offset too
+            for (int l = 0; l < Dim; ++l) qg += vp[i][l] * offset[Dim * s + l];
           t[i] = qg;
         }
         if constexpr (Stabilized) {
@@ -203,6 +244,7 @@ std::size_t NodalBody::force_pass_bytes() const {
   std::size_t bytes = slots * (sizeof(Index) + dim * sizeof(double)) + N * (sizeof(Index) + sizeof(double));
   if (stabilized_)
     bytes += slots * sizeof(double) + N * sizeof(double) * (12 + 3);  // k; sums, moments, positions
+  if (!test_offsets_.empty()) bytes += slots * dim * sizeof(double);  // VCI's offsets
   // u read (3D: and copied 4 to a node), each thread's forces zeroed, scattered into and summed, f written
   const std::size_t lanes = dim == 3 ? 4 : dim;
   return bytes + N * sizeof(double) * (2 * dim + (dim == 3 ? lanes : 0) + 2 * lanes * threads);
@@ -224,6 +266,7 @@ NodalForceTables NodalBody::force_tables() const {
     t.lever_sum = pairs_.lever_sum.data();
     t.lever_moment = pairs_.lever_moment.data();
   }
+  if (!test_offsets_.empty()) t.test_offset = test_offsets_.data();
   return t;
 }
 
@@ -233,6 +276,11 @@ void NodalBody::internal_force(const Vector& u, Vector& f) const {
     nodal_force_3d(force_tables(), law_, u, f, scratch_);
   else
     stabilized_ ? force_kernel<2, true>(u, f) : force_kernel<2, false>(u, f);
+  if (constraints_) constraints_->terms(u, &f);
+}
+
+Vec3 NodalBody::weak_reaction(const Vector& u, const Selection& selection) const {
+  return constraints_ ? constraints_->reaction(u, selection) : Vec3::Zero();
 }
 
 double NodalBody::energies(const Vector& u, double* stabilization) const {
@@ -256,7 +304,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
     }
   }
   if (stabilization) *stabilization = stab;
-  return material + stab;
+  return material + stab + (constraints_ ? constraints_->terms(u, nullptr) : 0.0);
 }
 
 double NodalBody::strain_energy(const Vector& u) const { return energies(u, nullptr); }
@@ -294,15 +342,23 @@ void NodalBody::add_stabilization_block(Index I, std::vector<double>& block) con
       for (int i = 0; i < dim; ++i) block[(dim * a + i) * size + dim * c + i] += S(a, c);
 }
 
-void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+void NodalBody::assemble_tangent(const Vector& u, const BlockSink& sink, std::span<const double> offsets) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   BlockExtra stabilization;
   if (stabilized_) stabilization = [this](Index I, std::vector<double>& block) { add_stabilization_block(I, block); };
   if (schedule_.colours.empty())
     schedule_ = only_points(schedule_points(domain_.at_nodes(), domain_.nodes().positions), own_nodes_);
-  assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization);
+  assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization,
+                           offsets);
+  if (constraints_) constraints_->add_tangent(u, sink);
+}
+
+void NodalBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
+  assemble_tangent(u, sink, test_offsets_);
   if (f) internal_force(u, *f);
 }
+
+void NodalBody::galerkin_tangent(const Vector& u, const BlockSink& sink) const { assemble_tangent(u, sink, {}); }
 
 void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
   std::vector<Index> dofs;
@@ -310,6 +366,7 @@ void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
     neighbour_dofs(domain_.at_nodes(), I, dofs);
     visit(dofs);
   }
+  if (constraints_) constraints_->visit_couplings(visit);
 }
 
 Vector NodalBody::lumped_mass() const {

@@ -8,6 +8,13 @@
 //   E_stab = 1/2 sum_I sum_J k_IJ |e_IJ|^2,  k_IJ = c mu V_I w_IJ / (sum_J w_IJ |x_J - x_I|^2),
 // which vanishes for every affine motion (so patch tests and rigid rotations of
 // any size are untouched) and is quadratic in u.
+//
+// With meshless.vci: linear (integration_constraint.h) the forces are tested
+// with grad psi_K + xi_K, so the integration constraint holds on any node
+// set and across cuts; the strains (trial side) are the MLS ones. fix and
+// displacement act on the boundary faces (weak_boundary_conditions.h), or
+// with meshless.essential: parameters, on the selected nodes' parameters
+// (the paper's way, inconsistent: MLS does not interpolate).
 #include <utility>
 #include <vector>
 
@@ -15,6 +22,7 @@
 #include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/nodal_force_kernel.h"
 #include "discretization/meshless/point_integration.h"
+#include "discretization/meshless/weak_boundary_conditions.h"
 #include "problem/material.h"
 
 namespace kerf {
@@ -28,7 +36,10 @@ struct StabilizationPairs {
   std::vector<double> stiffness, lever_sum, lever_moment;
 };
 
-class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public PartitionedAssembly {
+class NodalBody final : public MeshlessBody,
+                        public CutsInShapeFunctions,
+                        public PartitionedAssembly,
+                        public WeakConstraints {
  public:
   /// The default c of the stabilisation (meshless.stabilization: true).
   static constexpr double default_stabilization = 0.1;
@@ -49,6 +60,11 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public
   void internal_force(const Vector& u, Vector& f) const override;
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
   double strain_energy(const Vector& u) const override;
+  bool symmetric_tangent() const override { return test_offsets_.empty(); }
+  /// The tangent tested with the MLS gradients themselves (no VCI correction).
+  void galerkin_tangent(const Vector& u, const BlockSink& sink) const override;
+  Vec3 weak_reaction(const Vector& u, const Selection& selection) const override;
+  const WeakBoundaryConditions* weak_conditions() const override { return constraints_.get(); }
 
   Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override;
@@ -64,6 +80,8 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public
   /// Bytes one internal-force pass streams (tables once, u and each thread's
   /// force vector once): the pass's floor over a measured bandwidth.
   std::size_t force_pass_bytes() const;
+  /// VCI's offsets ghat - grad psi, dim per slot of at_nodes (1/m); empty with vci: none.
+  const std::vector<double>& test_offsets() const { return test_offsets_; }
 
  private:
   /// f_int in one pass over the nodes, each thread scattering into its own
@@ -76,8 +94,13 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public
   double energies(const Vector& u, double* stabilization) const;
   /// The stabilisation's stiffness on point I's neighbours (scalar per node pair) into `block`.
   void add_stabilization_block(Index I, std::vector<double>& block) const;
+  /// The tangent tested with grad psi + `offsets` (dim per slot; empty: Galerkin).
+  void assemble_tangent(const Vector& u, const BlockSink& sink, std::span<const double> offsets) const;
 
   void share_nodes(RankShare share);
+  /// VCI's correction for the shape functions as they stand, and the
+  /// integration constraint's residual recorded.
+  void correct_test_gradients();
 
   RankShare share_;
   std::pair<Index, Index> own_nodes_;  // the nodes whose terms this rank computes (all in a serial run)
@@ -89,6 +112,9 @@ class NodalBody final : public MeshlessBody, public CutsInShapeFunctions, public
   std::vector<double> position4_;              // 3D pass: positions 4 to a node (aligned_32)
   mutable NodalForceScratch scratch_;          // 3D pass
   mutable PointSchedule schedule_;             // tangent assembly, built at its first call
+  bool vci_;
+  std::vector<double> test_offsets_;  // VCI's ghat - grad psi, dim per slot of at_nodes (empty without)
+  std::unique_ptr<WeakBoundaryConditions> constraints_;  // null with essential: parameters
 };
 
 }  // namespace kerf

@@ -29,8 +29,9 @@ __attribute__((always_inline)) inline v4d gradient4(const NodalForceTables& t, I
   return v;
 }
 
-/// One node's gather, stress and scatter into `mine` (4 per node).
-template <bool Stabilized>
+/// One node's gather, stress and scatter into `mine` (4 per node); with
+/// `Corrected`, neighbour K is tested with grad psi_K plus its VCI offset.
+template <bool Stabilized, bool Corrected>
 __attribute__((always_inline)) inline void node_pass(const NodalForceTables& t, const MaterialLaw& law,
                                                      const double* u4, double* mine, Index I) {
   const Index s0 = t.start[I], s1 = t.start[I + 1];
@@ -53,11 +54,13 @@ __attribute__((always_inline)) inline void node_pass(const NodalForceTables& t, 
   const Mat3 P = law.stress(F);
   const double* uI = u4 + 4 * I;
   // Columns of q = V P - (d - u_I s_I^T - h M_I) and of h, as vectors over i.
-  v4d q_col[3], h_col[3];
+  // VCI tests only V P with xi (p_col): the pair terms are Galerkin.
+  v4d q_col[3], h_col[3], p_col[3];
   for (int l = 0; l < 3; ++l) {
-    v4d q = {}, hc = {};
+    v4d q = {}, hc = {}, p = {};
     for (int i = 0; i < 3; ++i) {
       double value = t.volume[I] * P(i, l);
+      p[i] = value;
       if constexpr (Stabilized) {
         double hM = 0.0;
         for (int m = 0; m < 3; ++m) hM += h[i][m] * t.lever_moment[9 * I + 3 * m + l];
@@ -66,7 +69,7 @@ __attribute__((always_inline)) inline void node_pass(const NodalForceTables& t, 
       q[i] = value;
       hc[i] = h[i][l];
     }
-    q_col[l] = q, h_col[l] = hc;
+    q_col[l] = q, h_col[l] = hc, p_col[l] = p;
   }
   const v4d a_I = *reinterpret_cast<const v4d*>(uI) - (h_col[0] * xI[0] + h_col[1] * xI[1] + h_col[2] * xI[2]);
   v4d push = {};
@@ -74,6 +77,10 @@ __attribute__((always_inline)) inline void node_pass(const NodalForceTables& t, 
     const Index K = t.index[s];
     const double* g = t.gradient + 3 * s;
     v4d force = q_col[0] * g[0] + q_col[1] * g[1] + q_col[2] * g[2];
+    if constexpr (Corrected) {
+      const double* o = t.test_offset + 3 * s;
+      force += p_col[0] * o[0] + p_col[1] * o[1] + p_col[2] * o[2];
+    }
     if constexpr (Stabilized) {
       const double* xK = t.position4 + 4 * K;
       const v4d w = *reinterpret_cast<const v4d*>(u4 + 4 * K) - (h_col[0] * xK[0] + h_col[1] * xK[1] + h_col[2] * xK[2]);
@@ -87,21 +94,29 @@ __attribute__((always_inline)) inline void node_pass(const NodalForceTables& t, 
   *reinterpret_cast<v4d*>(mine + 4 * I) -= push;
 }
 
-template <bool Stabilized>
+template <bool Stabilized, bool Corrected>
 __attribute__((always_inline)) inline void nodes_pass(const NodalForceTables& t, const MaterialLaw& law,
                                                       const double* u4, double* mine) {
 #pragma omp for schedule(static)
-  for (Index I = t.pass_begin; I < t.pass_end; ++I) node_pass<Stabilized>(t, law, u4, mine, I);
+  for (Index I = t.pass_begin; I < t.pass_end; ++I) node_pass<Stabilized, Corrected>(t, law, u4, mine, I);
+}
+
+__attribute__((always_inline)) inline void nodes_pass_any(const NodalForceTables& t, const MaterialLaw& law,
+                                                          const double* u4, double* mine) {
+  if (t.test_offset)
+    t.stiffness ? nodes_pass<true, true>(t, law, u4, mine) : nodes_pass<false, true>(t, law, u4, mine);
+  else
+    t.stiffness ? nodes_pass<true, false>(t, law, u4, mine) : nodes_pass<false, false>(t, law, u4, mine);
 }
 
 /// The pass over this thread's nodes, compiled for the baseline and for AVX2 + FMA.
 void nodes_pass_baseline(const NodalForceTables& t, const MaterialLaw& law, const double* u4, double* mine) {
-  t.stiffness ? nodes_pass<true>(t, law, u4, mine) : nodes_pass<false>(t, law, u4, mine);
+  nodes_pass_any(t, law, u4, mine);
 }
 
 __attribute__((target("avx2,fma"))) void nodes_pass_avx2(const NodalForceTables& t, const MaterialLaw& law,
                                                          const double* u4, double* mine) {
-  t.stiffness ? nodes_pass<true>(t, law, u4, mine) : nodes_pass<false>(t, law, u4, mine);
+  nodes_pass_any(t, law, u4, mine);
 }
 
 using NodesPass = void (*)(const NodalForceTables&, const MaterialLaw&, const double*, double*);

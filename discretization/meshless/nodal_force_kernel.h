@@ -6,6 +6,7 @@
 // multiply-adds, u and the per-thread forces held 4 to a node so every access
 // is one aligned load or store. Compiled twice, for AVX2 + FMA and for the
 // baseline x86-64, and chosen once at run time, so the binary runs anywhere.
+// With VCI each neighbour's force is tested with grad psi_K + xi_K.
 // The arithmetic is that of NodalBody (see nodal_body.h), reassociated:
 //   e_IK = k_IK (u_K - H x_K - (u_I - H x_I)),  H = grad u at x_I.
 #include <span>
@@ -29,6 +30,7 @@ struct NodalForceTables {
   const double* stiffness = nullptr;     // k per slot; null without the stabilisation
   const double* lever_sum = nullptr;     // 3 per node
   const double* lever_moment = nullptr;  // 9 per node, row-major
+  const double* test_offset = nullptr;   // VCI's ghat - grad psi, 3 per slot; null without
 };
 
 /// Buffers a pass reuses: u padded to 4 a node, each thread's force vector.

@@ -57,9 +57,11 @@ namespace {
 
 /// add_material_block with the dimension fixed, so each node pair's DIM x DIM
 /// block is formed in registers and written a row at a time.
+/// With test gradients `test` other than g (a Petrov-Galerkin point, VCI)
+/// every node pair is computed: the block is not symmetric.
 template <int DIM>
-void add_material_block_fixed(const double* g, Index n, const Mat9& dPdF, double scale, const Index* place,
-                              Index size, double* block) {
+void add_material_block_fixed(const double* g, const double* test, Index n, const Mat9& dPdF, double scale,
+                              const Index* place, Index size, double* block) {
   using Grad = Eigen::Matrix<double, DIM, 1>;
   using Block = Eigen::Matrix<double, DIM, DIM>;
   for (Index b = 0; b < n; ++b) {
@@ -73,17 +75,18 @@ void add_material_block_fixed(const double* g, Index n, const Mat9& dPdF, double
           for (int l = 0; l < DIM; ++l) t += dPdF(i + 3 * j, k + 3 * l) * gb[l];
           T[k](i, j) = scale * t;
         }
-    // A hyperelastic tangent has major symmetry, so K is symmetric: the
-    // blocks a <= b are computed and mirrored.
+    // A hyperelastic tangent has major symmetry, so with test gradients
+    // equal to the trial ones K is symmetric: the blocks a <= b are computed and mirrored.
+    const bool symmetric = test == g;
     const Index column = DIM * place[b];
-    for (Index a = 0; a <= b; ++a) {
-      const Grad ga = Eigen::Map<const Grad>(g + DIM * a);
-      Block K;  // K(i, k) = sum_j T[k](i, j) g_a(j)
+    for (Index a = 0; a < (symmetric ? b + 1 : n); ++a) {
+      const Grad ga = Eigen::Map<const Grad>(test + DIM * a);
+      Block K;  // K(i, k) = sum_j T[k](i, j) ghat_a(j)
       for (int k = 0; k < DIM; ++k) K.col(k) = T[k] * ga;
       const Index row = DIM * place[a];
       for (int i = 0; i < DIM; ++i)
         for (int k = 0; k < DIM; ++k) block[(row + i) * size + column + k] += K(i, k);
-      if (a < b)
+      if (symmetric && a < b)
         for (int k = 0; k < DIM; ++k)
           for (int i = 0; i < DIM; ++i) block[(column + k) * size + row + i] += K(i, k);
     }
@@ -93,16 +96,26 @@ void add_material_block_fixed(const double* g, Index n, const Mat9& dPdF, double
 }  // namespace
 
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
-                        std::span<const Index> place, Index block_nodes, std::vector<double>& block) {
+                        std::span<const Index> place, Index block_nodes, std::vector<double>& block,
+                        std::span<const double> offsets) {
   const int dim = table.dimension;
-  const Index n = static_cast<Index>(table.neighbours.of(point).size()), size = block_nodes * dim;
+  auto near = table.neighbours.of(point);
+  const Index n = static_cast<Index>(near.size()), size = block_nodes * dim;
   KERF_DCHECK(static_cast<Index>(place.size()) == n);
   KERF_DCHECK(static_cast<Index>(block.size()) == size * size);
   const double* g = table.gradients_of(point);
+  const double* test = g;
+  thread_local std::vector<double> corrected;
+  if (!offsets.empty()) {
+    corrected.assign(g, g + dim * n);
+    for (Index a = 0; a < n; ++a)
+      for (int i = 0; i < dim; ++i) corrected[dim * a + i] += offsets[dim * (table.neighbours.start[point] + a) + i];
+    test = corrected.data();
+  }
   if (dim == 3)
-    add_material_block_fixed<3>(g, n, dPdF, scale, place.data(), size, block.data());
+    add_material_block_fixed<3>(g, test, n, dPdF, scale, place.data(), size, block.data());
   else
-    add_material_block_fixed<2>(g, n, dPdF, scale, place.data(), size, block.data());
+    add_material_block_fixed<2>(g, test, n, dPdF, scale, place.data(), size, block.data());
 }
 
 namespace {
@@ -234,15 +247,33 @@ void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedul
 
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                               const MaterialLaw& law, const Vector& u, const BlockSink& sink,
-                              const BlockExtra& extra) {
+                              const BlockExtra& extra, std::span<const double> offsets) {
   const PointBlockTerm material = [&](Index p, std::span<const Index> place, Index block_nodes,
                                       std::vector<double>& block) {
     Mat3 P;
     Mat9 dPdF;
     law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
-    add_material_block(table, p, dPdF, weights[p], place, block_nodes, block);
+    add_material_block(table, p, dPdF, weights[p], place, block_nodes, block, offsets);
   };
   assemble_point_blocks(table, schedule, material, sink, extra);
+}
+
+std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const Lame& lame,
+                                      Index node_count) {
+  const int dim = table.dimension;
+  std::vector<double> diagonal(dim * node_count, 0.0);
+  for (Index p = 0; p < table.point_count(); ++p) {
+    auto near = table.neighbours.of(p);
+    const double* g = table.gradients_of(p);
+    for (std::size_t k = 0; k < near.size(); ++k) {
+      double squared = 0.0;
+      for (int l = 0; l < dim; ++l) squared += g[dim * k + l] * g[dim * k + l];
+      for (int i = 0; i < dim; ++i)
+        diagonal[dim * near[k] + i] +=
+            weights[p] * (lame.mu * squared + (lame.lambda + lame.mu) * g[dim * k + i] * g[dim * k + i]);
+    }
+  }
+  return diagonal;
 }
 
 void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,

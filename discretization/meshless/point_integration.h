@@ -18,9 +18,11 @@ namespace kerf {
 /// order node-major): the material stiffness of one point, whose k-th
 /// neighbour is node place[k] of the block. dPdF must have major symmetry
 /// (every law here derives from an energy): half the node pairs are computed,
-/// the other half mirrored.
+/// the other half mirrored. With `offsets` (dim per slot of the table, 1/m: VCI's),
+/// the test side uses G + offsets (Petrov-Galerkin): every pair, not symmetric.
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
-                        std::span<const Index> place, Index block_nodes, std::vector<double>& block);
+                        std::span<const Index> place, Index block_nodes, std::vector<double>& block,
+                        std::span<const double> offsets = {});
 
 /// Adds a method's own terms (stabilisation) to one point's block.
 using BlockExtra = std::function<void(Index point, std::vector<double>& block)>;
@@ -56,10 +58,15 @@ void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedul
                            const BlockSink& sink, const BlockExtra& extra = {});
 
 /// K(u) of every point (weight w_p, the law's tangent at F_p, plus `extra`)
-/// into the sink, by assemble_point_blocks.
+/// into the sink, by assemble_point_blocks; `offsets` as add_material_block's.
 void assemble_material_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                               const MaterialLaw& law, const Vector& u, const BlockSink& sink,
-                              const BlockExtra& extra = {});
+                              const BlockExtra& extra = {}, std::span<const double> offsets = {});
+
+/// The diagonal of the material stiffness at rest (small strain, isotropic),
+/// per dof (K, i): sum_p w_p (mu |grad psi_K(x_p)|^2 + (lambda + mu) d_i psi_K(x_p)^2).
+std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const Lame& lame,
+                                      Index node_count);
 
 /// The consistent mass rho w_p phi_a phi_b (times the identity) of every point into the sink.
 void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,

@@ -47,11 +47,12 @@ Filled fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3&
 
 /// Fills the rows `rows(i)`, i < count, in parallel (with `only_if_changed`,
 /// those whose factors changed; `filled[i]` says which); throws naming the
-/// first singular one.
+/// first singular one, or with `singular` zeroes those rows and counts them.
 template <class Rows>
 void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points, Index count,
                Rows rows, const EnrichmentRule* enrichment, bool only_if_changed, std::vector<char>& filled,
-               const std::string& what, const std::string& context, const std::string& remedy) {
+               const std::string& what, const std::string& context, const std::string& remedy,
+               Index* singular = nullptr) {
   Index failed = -1;
   filled.assign(count, 0);
   ParallelFailure failure;
@@ -65,6 +66,14 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
         const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
         filled[i] = result != Filled::unchanged;
         if (result != Filled::singular) return;
+        if (singular) {  // no shape functions there: the row adds nothing
+          const std::size_t s0 = t.neighbours.start[p], s1 = t.neighbours.start[p + 1];
+          std::fill(t.value.begin() + s0, t.value.begin() + s1, 0.0);
+          std::fill(t.gradient.begin() + t.dimension * s0, t.gradient.begin() + t.dimension * s1, 0.0);
+#pragma omp atomic
+          ++*singular;
+          return;
+        }
 #pragma omp critical
         if (failed < 0 || p < failed) failed = p;
       });
@@ -124,7 +133,7 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
 
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const EnrichmentRule* enrichment, bool keep_factor_gradients) {
+                       const EnrichmentRule* enrichment, bool keep_factor_gradients, Index* singular) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
@@ -136,14 +145,15 @@ ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis
   if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
   if (enrichment && keep_factor_gradients) t.weight_factor_gradient.assign(t.neighbours.index.size(), Vec3::Zero());
   std::vector<char> filled;
-  fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, false, filled, what, context, remedy);
+  fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, false, filled, what, context, remedy,
+            singular);
   return t;
 }
 
 std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis,
                                       std::span<const Vec3> points, std::span<const Index> rows,
                                       const EnrichmentRule& enrichment, const std::string& what,
-                                      const std::string& context, const std::string& remedy) {
+                                      const std::string& context, const std::string& remedy, Index* singular) {
   const std::size_t slots = table.neighbours.index.size();
   if (table.weight_factor.empty()) {  // built before any cut: every factor was 1
     table.weight_factor.assign(slots, 1.0);
@@ -153,11 +163,26 @@ std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, M
              "internal: a table refreshed for a growing cut must keep its factors' gradients (keep_factor_gradients)");
   std::vector<char> filled;
   fill_rows(table, nodes, basis, points, static_cast<Index>(rows.size()), [&](Index i) { return rows[i]; },
-            &enrichment, true, filled, what, context, remedy);
+            &enrichment, true, filled, what, context, remedy, singular);
   std::vector<Index> recomputed;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (filled[i]) recomputed.push_back(rows[i]);
   return recomputed;
+}
+
+void append_rows(ShapeTable& table, const ShapeTable& more) {
+  KERF_CHECK(table.dimension == more.dimension && table.weight_factor.empty() == more.weight_factor.empty() &&
+                 table.weight_factor_gradient.empty() == more.weight_factor_gradient.empty(),
+             "internal: appending rows of a table built another way");
+  const Index offset = static_cast<Index>(table.neighbours.index.size());
+  for (Index p = 0; p < more.point_count(); ++p) table.neighbours.start.push_back(offset + more.neighbours.start[p + 1]);
+  auto append = [](auto& to, const auto& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(table.neighbours.index, more.neighbours.index);
+  append(table.value, more.value);
+  append(table.gradient, more.gradient);
+  append(table.condition, more.condition);
+  append(table.weight_factor, more.weight_factor);
+  append(table.weight_factor_gradient, more.weight_factor_gradient);
 }
 
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {

@@ -60,19 +60,25 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 /// inverted: `context` (where the setting comes from), then the point
 /// ("`what` [x y z]"), how many nodes cover it, and `remedy`.
 /// With `keep_factor_gradients`, the factors' gradients are stored too
-/// (refresh_shape_rows needs them; 24 bytes a slot).
+/// (refresh_shape_rows needs them; 24 bytes a slot). With `singular`, a
+/// point whose matrix cannot be inverted gets a row of zeros, counted there,
+/// instead of the refusal (for figures that must not stop a run).
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const EnrichmentRule* enrichment = nullptr, bool keep_factor_gradients = false);
+                       const EnrichmentRule* enrichment = nullptr, bool keep_factor_gradients = false,
+                       Index* singular = nullptr);
 
 /// Recomputes rows `rows` of a table built by shape_table at `points` (the
 /// same points, same neighbour lists) with the cuts' current enrichment: the
 /// cut grew. A row whose factors g_I (values and gradients) are those it was
 /// built with is left as it is. Returns the rows recomputed, in the order
-/// given. Throws like shape_table.
+/// given. Throws like shape_table (or counts, with `singular`).
 std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
                         std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
-                        const std::string& context, const std::string& remedy);
+                        const std::string& context, const std::string& remedy, Index* singular = nullptr);
+
+/// Appends the rows of `more` (a table of the same nodes, built the same way) after those of `table`.
+void append_rows(ShapeTable& table, const ShapeTable& more);
 
 /// F = I + sum_k u_{node_k} (x) grad phi_k at one point of a table.
 Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u);

@@ -27,7 +27,9 @@ TEST(MeshlessScenes, CantileverWithEfgAndNodalAgreesWithFemTet10Within3Percent) 
   // the nodal parameters (what the paper does).
   const std::vector<std::pair<std::string, std::vector<std::string>>> runs = {
       {"efg", {"discretization.method=efg", "discretization.meshless.spacing=0.004"}},
-      {"nodal", {"discretization.method=nodal", "discretization.meshless.spacing=0.002"}}};
+      {"nodal", {"discretization.method=nodal", "discretization.meshless.spacing=0.002"}},
+      {"nodal_vci", {"discretization.method=nodal", "discretization.meshless.spacing=0.002",
+                     "discretization.meshless.vci=linear"}}};
   for (auto [method, overrides] : runs) {
     overrides.push_back("output.vtk=false");
     json s = testing::run_scene_file("scenes/cantilever.yaml", overrides, "cantilever_" + method);

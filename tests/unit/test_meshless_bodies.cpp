@@ -66,16 +66,22 @@ void expect_consistent_derivatives(const DiscreteBody& body, const std::string& 
   body.internal_force(u + h * du, fp);
   body.internal_force(u - h * du, fm);
   body.internal_force(u, f);
-  // The force is the gradient of the energy.
-  const double power = (body.strain_energy(u + h * du) - body.strain_energy(u - h * du)) / (2 * h);
-  EXPECT_NEAR(f.dot(du), power, 1e-6 * std::abs(power)) << what;
+  // The force is the gradient of the energy (of a Galerkin body: with VCI the
+  // forces are tested with other gradients than the strains are made of).
+  if (body.symmetric_tangent()) {
+    const double power = (body.strain_energy(u + h * du) - body.strain_energy(u - h * du)) / (2 * h);
+    EXPECT_NEAR(f.dot(du), power, 1e-6 * std::abs(power)) << what;
+  }
   if (!check_tangent) return;
   SparseMatrix K = testing::assemble_stiffness(body, u);
   const Vector numeric = (fp - fm) / (2 * h), analytic = K * du;
   EXPECT_LT((analytic - numeric).norm(), 1e-6 * analytic.norm()) << what;
-  // The tangent is symmetric.
-  SparseMatrix KT = K.transpose();
-  EXPECT_LT((K - KT).norm(), 1e-10 * K.norm()) << what;
+  // The tangent is symmetric; a Petrov-Galerkin body's Galerkin tangent (its preconditioner) is.
+  SparseMatrix G = build_pattern(body);
+  body.galerkin_tangent(u, add_into(G));
+  if (body.symmetric_tangent()) EXPECT_LT((K - G).norm(), 1e-12 * K.norm()) << what;
+  SparseMatrix GT = G.transpose();
+  EXPECT_LT((G - GT).norm(), 1e-10 * G.norm()) << what;
 }
 
 TEST(NodalBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
@@ -83,12 +89,31 @@ TEST(NodalBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
     for (MaterialModel model : all_models)
       for (const char* stab : {"true", "false"})
         for (const char* gradient : {"direct", "smoothed"})
-          expect_consistent_derivatives(
-              *small_body("nodal", dim, model,
-                          {std::string("discretization.meshless.stabilization=") + stab,
-                           std::string("discretization.meshless.gradient=") + gradient}),
-              std::string("nodal ") + to_string(model) + " dim " + std::to_string(dim) + " stab " + stab + " " + gradient,
-              true);
+          for (const char* vci : {"none", "linear"})
+            expect_consistent_derivatives(
+                *small_body("nodal", dim, model,
+                            {std::string("discretization.meshless.stabilization=") + stab,
+                             std::string("discretization.meshless.gradient=") + gradient,
+                             std::string("discretization.meshless.vci=") + vci}),
+                std::string("nodal ") + to_string(model) + " dim " + std::to_string(dim) + " stab " + stab + " " +
+                    gradient + " vci " + vci,
+                true);
+}
+
+TEST(NodalBody, VciTestsWithTheGalerkinTangentOfThePlainBody) {
+  // The Galerkin tangent of a VCI body is the tangent of the same body without it.
+  for (int dim : {2, 3}) {
+    auto corrected = small_body("nodal", dim, MaterialModel::neohookean, {"discretization.meshless.vci=linear"});
+    auto plain = small_body("nodal", dim, MaterialModel::neohookean, {"discretization.meshless.vci=none"});
+    ASSERT_FALSE(corrected->symmetric_tangent());
+    ASSERT_TRUE(plain->symmetric_tangent());
+    const Vector u = smooth_field(*plain);
+    SparseMatrix G = build_pattern(*corrected);
+    corrected->galerkin_tangent(u, add_into(G));
+    const SparseMatrix K = testing::assemble_stiffness(*plain, u), K_vci = testing::assemble_stiffness(*corrected, u);
+    EXPECT_LT((G - K).norm(), 1e-12 * K.norm()) << dim;
+    EXPECT_GT((K_vci - K).norm(), 1e-6 * K.norm()) << dim;  // the correction is there
+  }
 }
 
 TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
@@ -104,19 +129,38 @@ TEST(EfgBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
     }
 }
 
+// VCI's test functions still add up to a constant: the nodal forces of any
+// displacement sum to zero, so reactions balance the loads.
+TEST(NodalBody, VciForcesSumToZero) {
+  for (int dim : {2, 3})
+    for (const char* gradient : {"direct", "smoothed"}) {
+      auto body = small_body("nodal", dim, MaterialModel::neohookean,
+                             {"discretization.meshless.vci=linear", std::string("discretization.meshless.gradient=") + gradient});
+      ASSERT_FALSE(body->symmetric_tangent());
+      Vector f;
+      body->internal_force(smooth_field(*body), f);
+      Vec3 sum = Vec3::Zero(), scale = Vec3::Zero();
+      for (Index n = 0; n < body->node_count(); ++n)
+        for (int i = 0; i < dim; ++i) sum[i] += f[dim * n + i], scale[i] += std::abs(f[dim * n + i]);
+      EXPECT_LT(sum.norm(), 1e-12 * scale.norm()) << dim << "D " << gradient;
+    }
+}
+
 // The 3D force pass is compiled twice (AVX2 + FMA, baseline x86-64) and the
 // CPU picks one: both must give the same forces (to round-off: FMA rounds once).
 TEST(NodalBody, BaselineAndVectorForcePassesAgree) {
   for (MaterialModel model : {MaterialModel::linear, MaterialModel::corotational})
-    for (const char* stab : {"true", "false"}) {
-      auto body = small_body("nodal", 3, model, {std::string("discretization.meshless.stabilization=") + stab});
+    for (const char* stab : {"true", "false"})
+      for (const char* vci : {"none", "linear"}) {
+      auto body = small_body("nodal", 3, model, {std::string("discretization.meshless.stabilization=") + stab,
+                                                 std::string("discretization.meshless.vci=") + vci});
       const auto& nodal = dynamic_cast<const NodalBody&>(*body);
       Vector u = smooth_field(*body);
       Vector best, baseline;
       nodal.internal_force(u, best);
       nodal.internal_force_baseline(u, baseline);
       ASSERT_GT(best.norm(), 0.0);
-      EXPECT_LT((best - baseline).norm(), 1e-12 * best.norm()) << to_string(model) << " stab " << stab;
+      EXPECT_LT((best - baseline).norm(), 1e-12 * best.norm()) << to_string(model) << " stab " << stab << " vci " << vci;
     }
 }
 

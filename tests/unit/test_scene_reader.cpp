@@ -207,5 +207,21 @@ TEST(SceneReader, ResolvedSceneRoundTripsThroughJson) {
   EXPECT_EQ(j["discretization"]["meshless"]["support"], 2.2);
 }
 
+TEST(SceneReader, ResolvedMeshlessScenesReadBackAsTheyWere) {
+  // Each method's defaults (essential, nitsche_safety, vci) written out read
+  // back to the same scene: a study's resolved scene runs again with `kerf run`.
+  for (const char* method : {"efg", "nodal"})
+    for (const char* analysis : {"static", "dynamic"}) {
+      const Scene s = testing::scene_from_text(std::string("domain: {box: {min: [0,0,0], max: [1,2,3]}}\n"
+                                                           "discretization: {method: ") + method + "}\n"
+                                               "solve: {analysis: " + analysis + "}\n");
+      const auto j = scene_to_json(s);
+      const auto again = scene_to_json(testing::scene_from_text(j.dump()));
+      EXPECT_EQ(again, j) << method << " " << analysis;
+      EXPECT_EQ(j["discretization"]["meshless"]["vci"], "none");
+      EXPECT_EQ(j["discretization"]["meshless"]["essential"], std::string(method) == "efg" ? "nitsche" : "parameters");
+    }
+}
+
 }  // namespace
 }  // namespace kerf

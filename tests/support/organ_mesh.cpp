@@ -1,0 +1,39 @@
+#include "support/organ_mesh.h"
+
+#include <gmsh.h>
+
+#include "core/thread_scope.h"
+#include "geometry/gmsh_session.h"
+
+namespace kerf::testing {
+
+void write_organ_mesh(const std::string& path, double size_left, double size_right) {
+  SingleThreadScope serial;  // the same mesh every run
+  ensure_gmsh_initialized();
+  gmsh::clear();
+  gmsh::model::add("organ");
+  const double a = 0.035, b = 0.025, c = 0.015, rest = -0.012;
+  const int sphere = gmsh::model::occ::addSphere(0, 0, 0, 1.0);
+  gmsh::model::occ::dilate({{3, sphere}}, 0, 0, 0, a, b, c);
+  const int below = gmsh::model::occ::addBox(-1, -1, -1, 2, 2, 1.0 + rest);
+  std::vector<std::pair<int, int>> kept;
+  std::vector<std::vector<std::pair<int, int>>> map;
+  gmsh::model::occ::cut({{3, sphere}}, {{3, below}}, kept, map);
+  gmsh::model::occ::synchronize();
+  gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
+  gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
+  gmsh::option::setNumber("Mesh.Algorithm3D", 1);
+  const int grading = gmsh::model::mesh::field::add("MathEval");
+  const double slope = (size_right - size_left) / (2 * a);
+  gmsh::model::mesh::field::setString(
+      grading, "F", std::to_string(size_left) + " + " + std::to_string(slope) + " * (x + " + std::to_string(a) + ")");
+  gmsh::model::mesh::field::setAsBackgroundMesh(grading);
+  gmsh::model::mesh::generate(3);
+  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  gmsh::write(path);
+  gmsh::clear();
+}
+
+}  // namespace kerf::testing

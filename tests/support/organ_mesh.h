@@ -1,0 +1,13 @@
+#pragma once
+// A curved body no lattice fits, as users bring them: an ellipsoid (semi-axes
+// 35 x 25 x 15 mm about the origin) cut flat at z = -12 mm where it rests,
+// meshed by gmsh into linear tetrahedra, graded along x, written as a .msh file.
+#include <string>
+
+namespace kerf::testing {
+
+/// Writes the organ's mesh to `path` (gmsh 4.1 text): edge length `size_left`
+/// (m) at x = -35 mm growing linearly to `size_right` at x = +35 mm.
+void write_organ_mesh(const std::string& path, double size_left, double size_right);
+
+}  // namespace kerf::testing
