@@ -111,7 +111,7 @@ inline EssentialMethod essential_method(const MeshlessOptions& options, Method m
 /// was 4-8 on a curved organ mesh, 8-16 on the cracked plate (EFG); larger
 /// stiffens coarse bodies (the organ's EFG end probe -3.5% at 8, -7.5% at 32).
 constexpr double nitsche_safety_default = 32.0;
-inline double nitsche_safety(const MeshlessOptions& options, Method) {
+inline double nitsche_safety(const MeshlessOptions& options) {
   return options.nitsche_safety.value_or(nitsche_safety_default);
 }
 

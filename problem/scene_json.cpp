@@ -101,7 +101,7 @@ json scene_to_json(const Scene& s) {
         {"vci", to_string(ml.vci)}}}};
   // Only where it acts: a resolved scene must read back (it is refused elsewhere).
   if (essential_method(ml, d.method) == EssentialMethod::nitsche)
-    j["discretization"]["meshless"]["nitsche_safety"] = nitsche_safety(ml, d.method);
+    j["discretization"]["meshless"]["nitsche_safety"] = nitsche_safety(ml);
   json boundary = json::array();
   for (const auto& bc : s.boundary) boundary.push_back(boundary_json(bc, dim));
   j["boundary"] = boundary;

@@ -76,7 +76,8 @@ void EfgBody::record_constraint_residual() {
   record_constraint(constraint_residual(domain_.boundary_terms(), volume, domain_.dimension()), std::nullopt);
 }
 
-void EfgBody::assemble_loads() {  const int dim = domain_.dimension();
+void EfgBody::assemble_loads() {
+  const int dim = domain_.dimension();
   load_ = Vector::Zero(dof_count());
   const ShapeTable& t = points_.shapes();
   for (Index p = 0; p < points_.point_count(); ++p) {

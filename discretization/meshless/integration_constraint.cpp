@@ -144,7 +144,7 @@ std::vector<double> consistent_offsets(const ShapeTable& points, std::span<const
   // Gauss rule of a boundary facet a cut crosses): a constant per node,
   // mean / the node's support volume, takes it, as plain VCI would.
   const std::vector<Index> part = joined_parts(points, N);
-  std::vector<double> support(N, 0.0), mean(dim * N, 0.0), count(N, 0.0);
+  std::vector<double> support(N, 0.0), mean(N, 0.0), count(N, 0.0);  // mean, count: per part (its root node)
   for (Index p = 0; p < points.point_count(); ++p)
     for (Index I : points.neighbours.of(p)) support[I] += weights[p];
   std::vector<double> offsets(dim * points.neighbours.index.size(), 0.0);

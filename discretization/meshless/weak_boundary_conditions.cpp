@@ -37,7 +37,7 @@ WeakBoundaryConditions::WeakBoundaryConditions(const Scene& scene, const Meshles
     }
     constraints_.push_back(std::move(c));
   }
-  safety_ = nitsche_safety(scene.discretization.meshless, scene.discretization.method);
+  safety_ = nitsche_safety(scene.discretization.meshless);
   if (nitsche_ && !constraints_.empty()) set_nitsche_alpha(volume);
 }
 

@@ -79,7 +79,9 @@ void expect_consistent_derivatives(const DiscreteBody& body, const std::string& 
   // The tangent is symmetric; a Petrov-Galerkin body's Galerkin tangent (its preconditioner) is.
   SparseMatrix G = build_pattern(body);
   body.galerkin_tangent(u, add_into(G));
-  if (body.symmetric_tangent()) EXPECT_LT((K - G).norm(), 1e-12 * K.norm()) << what;
+  if (body.symmetric_tangent()) {
+    EXPECT_LT((K - G).norm(), 1e-12 * K.norm()) << what;
+  }
   SparseMatrix GT = G.transpose();
   EXPECT_LT((G - GT).norm(), 1e-10 * G.norm()) << what;
 }
