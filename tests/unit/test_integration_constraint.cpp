@@ -7,6 +7,8 @@
 // (sigma n on the outer boundary, nothing on the cut's faces).
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <map>
 
 #include "discretization/body_capabilities.h"
@@ -54,7 +56,10 @@ Mat3 enclosed_volume(const DiscreteBody& body, const std::function<bool(const Ve
 /// The organ of organ_mesh.h, graded 3 to 6 mm, written once per process.
 const std::string& organ_file() {
   static const std::string path = [] {
-    const std::string p = testing::output_directory("IntegrationConstraintOrgan") + "/organ.msh";
+    // A folder of this process's own: ctest runs these tests two at a time, each
+    // in its process, and output_directory empties the folder it makes.
+    const std::string p =
+        testing::output_directory("IntegrationConstraintOrgan_" + std::to_string(::getpid())) + "/organ.msh";
     testing::write_organ_mesh(p, 0.003, 0.006);
     return p;
   }();
