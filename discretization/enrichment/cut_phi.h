@@ -6,6 +6,8 @@
 // normal's side of the cut, -1 on the other, varies smoothly around the tips
 // and is 0 on the cut's extension beyond them. Convention: a point on the cut
 // itself (d = 0), tips included, counts as the +1 side.
+#include <limits>
+
 #include "core/types.h"
 #include "geometry/cut_surface.h"
 
@@ -14,6 +16,8 @@ namespace kerf {
 struct PhiValue {
   double value = 1.0;
   Vec3 gradient = Vec3::Zero();  // 1/m
+  // d (m): around the front the distance to it, grad phi ~ 1/d; over the cut |s|, where grad phi = 0.
+  double front_distance = std::numeric_limits<double>::infinity();
 };
 
 /// phi and its analytic gradient from a point's region data.

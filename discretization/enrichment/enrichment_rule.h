@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/types.h"
+#include "discretization/enrichment/cut_phi.h"
 #include "geometry/cut_surface.h"
 
 namespace kerf {
@@ -22,6 +23,15 @@ struct WeightFactor {
 inline WeightFactor operator*(const WeightFactor& a, const WeightFactor& b) {
   return {a.value * b.value, a.gradient * b.value + a.value * b.gradient};
 }
+
+/// g = (1 + sigma phi) / 2 for a node on side sigma (+1 or -1) of radius
+/// `support` (m). Around the cut's front grad phi ~ 1/d: a point within
+/// front_core of the support radius of the front (a node the front passes
+/// through, d ~ 1e-18 m) takes grad phi scaled by d / core: bounded, of the
+/// order of a small cell's mean, not a 1e16/m sample. The MLS derivatives stay
+/// linearly consistent for any weight gradients, so patch tests still pass.
+WeightFactor side_factor(const PhiValue& phi, int side, double support);
+inline constexpr double front_core = 1.0 / 16.0;
 
 class EnrichmentRule {
  public:

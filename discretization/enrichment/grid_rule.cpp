@@ -32,8 +32,7 @@ void GridRule::enrich(Index node) {
 
 WeightFactor GridRule::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
-  const PhiValue p = phi(x);
-  return {0.5 * (1.0 + side_[node] * p.value), 0.5 * side_[node] * p.gradient};
+  return side_factor(phi(x), side_[node], support_[node]);
 }
 
 void GridRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<WeightFactor> out) const {
@@ -45,7 +44,7 @@ void GridRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<We
       continue;
     }
     if (!p) p = phi(x);
-    out[k] = {0.5 * (1.0 + side_[node] * p->value), 0.5 * side_[node] * p->gradient};
+    out[k] = side_factor(*p, side_[node], support_[node]);
   }
 }
 

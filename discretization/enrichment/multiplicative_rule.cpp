@@ -4,7 +4,7 @@ namespace kerf {
 
 MultiplicativeRule::MultiplicativeRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
                                        std::span<const double> support)
-    : cut_(cut) {
+    : cut_(cut), support_(support) {
   for (Index k = 0; k < pieces; ++k) frame_.push_back(common_frame(cut_, k, k + 1));
   const Index n = static_cast<Index>(nodes.size());
   start_.assign(1, 0);
@@ -22,8 +22,7 @@ WeightFactor MultiplicativeRule::factor(Index node, const Vec3& x) const {
   WeightFactor g;
   for (Index j = start_[node]; j < start_[node + 1]; ++j) {
     const Index k = piece_[j];
-    const PhiValue p = grid_phi(cut_, k, k + 1, frame_[k], x);
-    g = g * WeightFactor{0.5 * (1.0 + side_[j] * p.value), 0.5 * side_[j] * p.gradient};
+    g = g * side_factor(grid_phi(cut_, k, k + 1, frame_[k], x), side_[j], support_[node]);
   }
   return g;
 }

@@ -10,6 +10,7 @@ namespace kerf {
 
 class MultiplicativeRule final : public EnrichmentRule {
  public:
+  /// `support` is viewed: it must outlive this.
   MultiplicativeRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes, std::span<const double> support);
 
   bool enriches(Index node) const override { return start_[node + 1] > start_[node]; }
@@ -18,6 +19,7 @@ class MultiplicativeRule final : public EnrichmentRule {
  private:
   CutSurface cut_;
   std::vector<CutFrame> frame_;  // per piece
+  std::span<const double> support_;  // viewed: the nodes' support radii outlive the rule
   std::vector<Index> start_;     // CSR over nodes: the pieces each node reaches
   std::vector<Index> piece_;
   std::vector<signed char> side_;  // per (node, piece)

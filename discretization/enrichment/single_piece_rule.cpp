@@ -6,7 +6,7 @@ namespace kerf {
 
 SinglePieceRule::SinglePieceRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes,
                                  std::span<const double> support)
-    : cut_(cut) {
+    : cut_(cut), support_(support) {
   for (Index k = 0; k < pieces; ++k) piece_frame_.push_back(common_frame(cut_, k, k + 1));
   enriched_ = nodes_reached(cut_, pieces, nodes, support);
   const Index n = static_cast<Index>(nodes.size());
@@ -26,8 +26,7 @@ SinglePieceRule::SinglePieceRule(const CutSurface& cut, Index pieces, std::span<
 WeightFactor SinglePieceRule::factor(Index node, const Vec3& x) const {
   if (!enriched_[node]) return {};
   const Index k = nearest_[node];
-  const PhiValue p = grid_phi(cut_, k, k + 1, piece_frame_[k], x);
-  return {0.5 * (1.0 + side_[node] * p.value), 0.5 * side_[node] * p.gradient};
+  return side_factor(grid_phi(cut_, k, k + 1, piece_frame_[k], x), side_[node], support_[node]);
 }
 
 }  // namespace kerf

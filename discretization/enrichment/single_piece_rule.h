@@ -9,7 +9,7 @@ namespace kerf {
 
 class SinglePieceRule final : public EnrichmentRule {
  public:
-  /// The cut's first `pieces` pieces (> 0), for these nodes.
+  /// The cut's first `pieces` pieces (> 0), for these nodes; `support` is viewed: it must outlive this.
   SinglePieceRule(const CutSurface& cut, Index pieces, std::span<const Vec3> nodes, std::span<const double> support);
 
   bool enriches(Index node) const override { return enriched_[node]; }
@@ -18,6 +18,7 @@ class SinglePieceRule final : public EnrichmentRule {
  private:
   CutSurface cut_;
   std::vector<CutFrame> piece_frame_;  // each piece's own frame
+  std::span<const double> support_;    // viewed: the nodes' support radii outlive the rule
   std::vector<char> enriched_;
   std::vector<signed char> side_;  // sigma_I
   std::vector<Index> nearest_;     // node I's piece
