@@ -75,9 +75,16 @@ class CentralDifferenceStepper final : public Stepper {
     inverse_mass_ = mass_.cwiseInverse();
     if (!fresh_estimate_) critical_step_ = estimate_critical_step_again();
     fresh_estimate_ = false;
-    substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(options_.dt / critical_step_)));
     SolverCounters& solver = report_.solver;
     solver.critical_dt_min_s = std::min(solver.critical_dt_min_s.value_or(critical_step_), critical_step_);
+    const double needed = options_.dt / critical_step_;
+    // Thousands of substeps a step mean a near-singular discretization, not a stiffer body: stopped, naming where.
+    KERF_CHECK(options_.allow_unstable_dt || needed <= max_substeps, "central-difference at t = ", s.t,
+               " s: after the cut changed the body its critical time step fell to ", critical_step_, " s; dt = ",
+               options_.dt, " s would take ", needed, " substeps a step, more than the ", max_substeps,
+               " allowed. The fastest vibration is largest at ", mechanics_.body().describe_dof(fastest_dof()),
+               ": a near-singular shape function within a support of there (a cut through or next to a node?)");
+    substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(needed)));
     solver.substeps_max = std::max(solver.substeps_max, substeps_);
     // A remeshed body comes with a new stepper, which has read no load yet.
     mechanics_.external_force(s.t, f_ext_);
@@ -168,6 +175,21 @@ class CentralDifferenceStepper final : public Stepper {
     return 1e-7 * (high - low).norm();
   }
 
+  /// Where the fastest vibration sits: the free dof where M^-1 K q is largest
+  /// for the last estimate's mode q (q may not have converged onto a
+  /// near-singular dof yet; its product is dominated by that dof).
+  Index fastest_dof() {
+    const FreeDofs free(mechanics_.dof_count(), constrained_);
+    Vector q = Vector::Zero(mechanics_.dof_count()), force;
+    free.add_to_full(mode_, q);
+    mechanics_.internal_force(q * (probe_length_ / std::max(q.lpNorm<Eigen::Infinity>(), 1e-300)), force);
+    if (free.free_count() == 0) return 0;
+    Index best = free.free_dofs().front();
+    for (Index d : free.free_dofs())
+      if (std::abs(force[d] * inverse_mass_[d]) > std::abs(force[best] * inverse_mass_[best])) best = d;
+    return best;
+  }
+
   /// Velocity Verlet over h, ending at time t1: self-starting, so substeps may differ from the steps around them.
   void substep(SolverState& s, double h, double t1) {
     half_velocity_ = s.v + 0.5 * h * s.a;
@@ -211,6 +233,7 @@ class CentralDifferenceStepper final : public Stepper {
   double probe_length_ = 0.0;    // m: 1e-7 of the body's diagonal, the matrix-free product's largest displacement
   bool fresh_estimate_ = false;  // critical_step_ is of the discretization as it is now
   int substeps_ = 1;             // per step: ceil(dt / critical_step_) after a growth lowered it
+  static constexpr double max_substeps = 1000;
 };
 
 }  // namespace
