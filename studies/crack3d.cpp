@@ -25,8 +25,9 @@
 //    background mesh above 1 mm). The meshless lattices at these spacings have an odd
 //    number of intervals across the plate, so no node lies on the crack (the
 //    cut_convergence study measures what nodes on a cut do).
-// Quick mode runs 2 mm only and holds each method's errors to what the full
-// study measured there (the constants below, from results/crack3d/crack3d.json).
+// Quick mode runs 2 mm only and holds each method's errors to at most what the
+// full study measured there (the constants below, from
+// results/crack3d/crack3d.json): a one-sided bound an improvement passes.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -60,8 +61,8 @@ struct QuickBound {
 };
 constexpr QuickBound measured_at_2mm[] = {
     {"fem_tet10_tips", -0.39, -1.30}, {"fem_tet10_remesh", -2.22, -8.43}, {"fem_tet4_remesh", -8.69, -41.23},
-    {"fem_tet4_remove", 9.11, 13.95}, {"efg", -0.27, 10.09},           {"nodal_smoothed", 6.23, 27.51},
-    {"nodal_direct", 2.50, 6.51},     {"efg_tips", -2.83, -9.61},         {"nodal_smoothed_tips", 1.80, 5.37},
+    {"fem_tet4_remove", 9.11, 13.95}, {"efg", 0.01, 10.18},           {"nodal_smoothed", 6.23, 27.51},
+    {"nodal_direct", 2.50, 6.51},     {"efg_tips", -1.08, -1.87},         {"nodal_smoothed_tips", 1.80, 5.37},
     {"nodal_direct_tips", 1.38, -0.42},
 };
 constexpr double quick_margin = 0.3;  // percentage points: the same scene, summed in another order
@@ -286,8 +287,9 @@ void check_crack3d_claims(const Json& result, bool quick) {
   for (const QuickBound& q : measured_at_2mm) {
     const Json& p = find_point(points, q.method, 0.002);
     const double centre = p["centre_error_percent"], front = p["front_error_percent"];
-    check_claim(std::abs(centre - q.centre_error) < quick_margin && std::abs(front - q.front_error) < quick_margin,
-                std::string(q.method) + " at 2 mm is off the reference by what the full study measured (centre " +
+    check_claim(std::abs(centre) < std::abs(q.centre_error) + quick_margin &&
+                    std::abs(front) < std::abs(q.front_error) + quick_margin,
+                std::string(q.method) + " at 2 mm is off the reference by at most what the full study measured (centre " +
                     std::to_string(centre) + " % against " + std::to_string(q.centre_error) + ", front " +
                     std::to_string(front) + " % against " + std::to_string(q.front_error) + ")");
   }
