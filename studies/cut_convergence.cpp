@@ -26,9 +26,9 @@
 //    2 mm on the same moved cut. EFG uses the same nodes and shape functions:
 //    what differs between it and nodal integration is the integration.
 // Quick mode runs 3 mm only, and direct nodal and tet10 at 2 mm with the cut
-// on the nodes and 0.1 mm off them; it holds each method's error to what the
-// full study measured at 3 mm (the constants below, from
-// results/cut_convergence/cut_convergence.json).
+// on the nodes and 0.1 mm off them; it holds each method's error to at most
+// what the full study measured at 3 mm (the constants below, from
+// results/cut_convergence/cut_convergence.json): one-sided, an improvement passes.
 // Claims: see the end; results/README.md says them in words.
 #include <algorithm>
 #include <cmath>
@@ -58,7 +58,7 @@ struct QuickBound {
 };
 constexpr QuickBound measured_at_3mm[] = {
     {"fem_tet10_remesh", -4.40, -6.00}, {"fem_tet4_remesh", -27.62, -34.44}, {"fem_tet4_remove", 2.00, 8.77},
-    {"efg", -3.36, -4.23},             {"nodal_smoothed", 41.97, 57.78},   {"nodal_direct", 47.54, 69.25},
+    {"efg", -3.14, -3.89},             {"nodal_smoothed", 41.97, 57.78},   {"nodal_direct", 47.54, 69.25},
 };
 constexpr double quick_margin = 0.5;  // percentage points: the same scene, summed in another order
 
@@ -186,8 +186,9 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
   for (const QuickBound& q : measured_at_3mm) {
     const double sag = number(points, q.method, 0.003, {}, "sag_error_percent");
     const double opening = number(points, q.method, 0.003, {}, "opening_error_percent");
-    check_claim(std::abs(sag - q.sag_error) < quick_margin && std::abs(opening - q.opening_error) < quick_margin,
-                std::string(q.method) + " at 3 mm is off the reference by what the full study measured (sag " +
+    check_claim(std::abs(sag) < std::abs(q.sag_error) + quick_margin &&
+                    std::abs(opening) < std::abs(q.opening_error) + quick_margin,
+                std::string(q.method) + " at 3 mm is off the reference by at most what the full study measured (sag " +
                     std::to_string(sag) + " % against " + std::to_string(q.sag_error) + ", opening " +
                     std::to_string(opening) + " % against " + std::to_string(q.opening_error) + ")");
   }
