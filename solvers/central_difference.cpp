@@ -82,7 +82,7 @@ class CentralDifferenceStepper final : public Stepper {
     KERF_CHECK(options_.allow_unstable_dt || needed <= max_substeps, "central-difference at t = ", s.t,
                " s: after the cut changed the body its critical time step fell to ", critical_step_, " s; dt = ",
                options_.dt, " s would take ", needed, " substeps a step, more than the ", max_substeps,
-               " allowed. The fastest vibration is largest at ", mechanics_.body().describe_dof(fastest_dof()),
+               " allowed. The fastest vibration is largest at ", mechanics_.describe_dof(fastest_dof()),
                ": a near-singular shape function within a support of there (a cut through or next to a node?)");
     substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(needed)));
     solver.substeps_max = std::max(solver.substeps_max, substeps_);
