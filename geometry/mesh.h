@@ -41,6 +41,13 @@ double cell_measure(const Mesh& mesh, Index c);
 /// i.e. the measure of its barycentric dual cell; nodes of no cell get 0.
 std::vector<double> dual_cell_volumes(const Mesh& mesh);
 
+/// Each node's second moments of its barycentric dual cell about the node
+/// itself, int (x_i - x_node,i)^2 over the cell (m^5; 2D: m^4; z = 0), exact:
+/// the dual part of a corner in a simplex is the union of the barycentric
+/// subdivision's simplices at that corner (corner, edge midpoint, face
+/// centroid[, cell centroid]), each integrated in closed form.
+std::vector<Vec3> dual_cell_second_moments(const Mesh& mesh);
+
 /// The straight-sided linear mesh on the corners of each cell: mid-edge nodes
 /// and nodes of no cell dropped, the others kept in their original order.
 Mesh corner_mesh(const Mesh& mesh);

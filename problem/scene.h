@@ -39,6 +39,9 @@ enum class EssentialMethod { penalty, nitsche, parameters };
 enum class NodalGradient { direct, smoothed };
 /// The order of the variationally consistent correction of nodal integration's test gradients.
 enum class VciOrder { none, linear };
+/// nodal: what holds the zero-energy modes (none, the hourglass-type pair
+/// term, or naturally stabilized nodal integration's strain gradients).
+enum class NodalStabilization { none, hourglass, nsni };
 enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
@@ -89,7 +92,7 @@ struct MeshlessOptions {
   int quadrature_order = 2;
   /// How fix/displacement act; unset: the method's default (essential_method).
   std::optional<EssentialMethod> essential;
-  bool stabilization = true;
+  NodalStabilization stabilization = NodalStabilization::hourglass;  // true: hourglass, false: none
   NodalGradient gradient = NodalGradient::direct;  // nodal: MLS gradient at the node, or SCNI
   /// nodal: test gradients corrected to keep the integration constraint
   /// (integration_constraint.h); off until the studies are re-run with it.
@@ -225,6 +228,7 @@ KERF_ENUM_NAMES(WeightFunction, "quartic");
 KERF_ENUM_NAMES(EssentialMethod, "penalty", "nitsche", "parameters");
 KERF_ENUM_NAMES(NodalGradient, "direct", "smoothed");
 KERF_ENUM_NAMES(VciOrder, "none", "linear");
+KERF_ENUM_NAMES(NodalStabilization, "none", "hourglass", "nsni");
 KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");

@@ -96,7 +96,7 @@ json scene_to_json(const Scene& s) {
         {"weight", to_string(ml.weight)},
         {"quadrature", {{"order", ml.quadrature_order}}},
         {"essential", to_string(essential_method(ml, d.method))},
-        {"stabilization", ml.stabilization},
+        {"stabilization", to_string(ml.stabilization)},
         {"gradient", to_string(ml.gradient)},
         {"vci", to_string(ml.vci)}}}};
   // Only where it acts: a resolved scene must read back (it is refused elsewhere).

@@ -133,6 +133,21 @@ void read_material(const YamlField& f, Material& m) {
   }
 }
 
+/// meshless.stabilization: a name, or true and false as the key always took
+/// (the hourglass term, none).
+NodalStabilization read_stabilization(const YamlField& f) {
+  const std::string value = f.text();
+  for (const char* name : EnumNames<NodalStabilization>::names)
+    if (value == name) return f.enumeration<NodalStabilization>();
+  static constexpr const char* accepted[] = {"true (hourglass)", "false (none)", "none", "hourglass", "nsni"};
+  try {
+    return f.boolean() ? NodalStabilization::hourglass : NodalStabilization::none;
+  } catch (const Error&) {
+    f.choice(accepted);  // fails, naming what is accepted
+    throw;
+  }
+}
+
 void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) {
   if (dim == 2) d.fem.element = ElementType::tri3;
   if (f.is_null()) return;
@@ -174,7 +189,7 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     }
     if (m.has("essential"))
       o.essential = m["essential"].enumeration<EssentialMethod>();
-    if (m.has("stabilization")) o.stabilization = m["stabilization"].boolean();
+    if (m.has("stabilization")) o.stabilization = read_stabilization(m["stabilization"]);
     if (m.has("gradient")) o.gradient = m["gradient"].enumeration<NodalGradient>();
     if (m.has("vci")) o.vci = m["vci"].enumeration<VciOrder>();
     if (m.has("nitsche_safety")) o.nitsche_safety = m["nitsche_safety"].number();

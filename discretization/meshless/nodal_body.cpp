@@ -42,7 +42,7 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
 
 NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     : MeshlessBody(scene, std::move(domain)),
-      stabilized_(scene.discretization.meshless.stabilization),
+      stabilized_(scene.discretization.meshless.stabilization == NodalStabilization::hourglass),
       vci_(scene.discretization.meshless.vci == VciOrder::linear) {
   const NodeSet& nodes = domain_.nodes();
   const EssentialMethod essential = essential_method(scene.discretization.meshless, Method::nodal);
@@ -59,6 +59,9 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     for (Index I = 0; I < nodes.size(); ++I)
       pair_row(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu, I, pairs_);
   }
+  if (scene.discretization.meshless.stabilization == NodalStabilization::nsni)
+    natural_ = std::make_unique<NaturalStabilization>(nodes, scene.discretization.meshless.basis, domain_.at_nodes(),
+                                                      domain_.enrichment(), law_.lame());
   const int dim = domain_.dimension();
   if (dim == 3) position4_ = padded_positions(nodes.positions);
   load_ = Vector::Zero(dof_count());
@@ -114,6 +117,9 @@ CutUpdate NodalBody::update_for_cuts(double t) {
     for (Index r = 0; r < count; ++r)
       pair_row(domain_.nodes(), domain_.at_nodes(), default_stabilization, law_.lame().mu, rows[r], pairs_);
   }
+  if (natural_)
+    natural_->refresh(domain_.nodes(), scene_.discretization.meshless.basis, domain_.at_nodes(), rows,
+                      domain_.enrichment());
   if (domain_.boundary_loads_touch(changed)) {
     load_ = body_load_;
     domain_.add_boundary_loads(scene_, load_);
@@ -235,6 +241,7 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
 void NodalBody::internal_force_baseline(const Vector& u, Vector& f) const {
   KERF_CHECK(domain_.dimension() == 3, "internal: the baseline pass is the 3D one");
   nodal_force_3d(force_tables(), law_, u, f, scratch_, VectorUnit::baseline);
+  if (natural_) natural_->add_forces(domain_.at_nodes(), own_nodes_, u, f);
 }
 
 std::size_t NodalBody::force_pass_bytes() const {
@@ -245,6 +252,7 @@ std::size_t NodalBody::force_pass_bytes() const {
   if (stabilized_)
     bytes += slots * sizeof(double) + N * sizeof(double) * (12 + 3);  // k; sums, moments, positions
   if (!test_offsets_.empty()) bytes += slots * dim * sizeof(double);  // VCI's offsets
+  if (natural_) bytes += natural_->table_bytes() + N * dim * sizeof(double) * 2 * threads;  // and its own pass
   // u read (3D: and copied 4 to a node), each thread's forces zeroed, scattered into and summed, f written
   const std::size_t lanes = dim == 3 ? 4 : dim;
   return bytes + N * sizeof(double) * (2 * dim + (dim == 3 ? lanes : 0) + 2 * lanes * threads);
@@ -276,6 +284,7 @@ void NodalBody::internal_force(const Vector& u, Vector& f) const {
     nodal_force_3d(force_tables(), law_, u, f, scratch_);
   else
     stabilized_ ? force_kernel<2, true>(u, f) : force_kernel<2, false>(u, f);
+  if (natural_) natural_->add_forces(domain_.at_nodes(), own_nodes_, u, f);
   if (constraints_) constraints_->terms(u, &f);
 }
 
@@ -303,6 +312,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
       stab += 0.5 * pairs_.stiffness[s] * e.squaredNorm();
     }
   }
+  if (natural_) stab += natural_->energy(table, own_nodes_, u);
   if (stabilization) *stabilization = stab;
   return material + stab + (constraints_ ? constraints_->terms(u, nullptr) : 0.0);
 }
@@ -346,6 +356,8 @@ void NodalBody::assemble_tangent(const Vector& u, const BlockSink& sink, std::sp
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   BlockExtra stabilization;
   if (stabilized_) stabilization = [this](Index I, std::vector<double>& block) { add_stabilization_block(I, block); };
+  if (natural_)
+    stabilization = [this](Index I, std::vector<double>& block) { natural_->add_block(domain_.at_nodes(), I, block); };
   if (schedule_.colours.empty())
     schedule_ = only_points(schedule_points(domain_.at_nodes(), domain_.nodes().positions), own_nodes_);
   assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization,

@@ -7,7 +7,9 @@
 //   e_IJ = u_J - u_I - (F_I - 1)(x_J - x_I),
 //   E_stab = 1/2 sum_I sum_J k_IJ |e_IJ|^2,  k_IJ = c mu V_I w_IJ / (sum_J w_IJ |x_J - x_I|^2),
 // which vanishes for every affine motion (so patch tests and rigid rotations of
-// any size are untouched) and is quadratic in u.
+// any size are untouched) and is quadratic in u; or, with
+// meshless.stabilization: nsni, by the strain-gradient term of naturally
+// stabilized nodal integration (natural_stabilization.h), which has no parameter.
 //
 // With meshless.vci: linear (integration_constraint.h) the forces are tested
 // with grad psi_K + xi_K, so the integration constraint holds on any node
@@ -20,6 +22,7 @@
 
 #include "core/rank_share.h"
 #include "discretization/meshless/meshless_body.h"
+#include "discretization/meshless/natural_stabilization.h"
 #include "discretization/meshless/nodal_force_kernel.h"
 #include "discretization/meshless/point_integration.h"
 #include "discretization/meshless/weak_boundary_conditions.h"
@@ -72,7 +75,7 @@ class NodalBody final : public MeshlessBody,
   /// where a changed support covers a boundary load, the load vector.
   CutUpdate update_for_cuts(double t) override;
 
-  /// Stabilisation energy alone (J): zero for affine displacement fields.
+  /// Stabilisation energy alone (J), hourglass or NSNI: zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;
   /// f_int(u) by the baseline x86-64 form of the 3D pass (tests: it must
   /// agree with the vector unit's form).
@@ -105,8 +108,9 @@ class NodalBody final : public MeshlessBody,
   RankShare share_;
   std::pair<Index, Index> own_nodes_;  // the nodes whose terms this rank computes (all in a serial run)
   std::vector<Index> touched_nodes_;   // those and their neighbours, sorted
-  bool stabilized_;
-  StabilizationPairs pairs_;  // empty without the stabilisation
+  bool stabilized_;           // the hourglass term
+  StabilizationPairs pairs_;  // empty without the hourglass term
+  std::unique_ptr<NaturalStabilization> natural_;  // null unless stabilization: nsni
   Vector body_load_;          // gravity alone (N)
   mutable std::vector<double> thread_forces_;  // 2D pass
   std::vector<double> position4_;              // 3D pass: positions 4 to a node (aligned_32)

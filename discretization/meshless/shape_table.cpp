@@ -109,7 +109,7 @@ void PointShapes::look_up_factors(const Vec3& point, std::span<const Index> near
 }
 
 bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point,
-                                     std::span<const Index> near) {
+                                     std::span<const Index> near, bool hessians) {
   x_.clear();
   w_.clear();
   weight_factor.assign(near.size(), 1.0);
@@ -118,17 +118,19 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
     const Index I = near[k];
     x_.push_back(nodes.positions[I]);
     scale = std::max(scale, nodes.support[I]);
-    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I], false);  // tables hold no Hessians
+    WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I], hessians);
     const WeightFactor& g = factors_[k];
     if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
-      // (w g)' = w' g + w g'; the Hessian is not enriched (tables hold none).
+      // (w g)' = w' g + w g'; (w g)'' without w g'' (see the header).
+      if (hessians)
+        wI.hessian = g.value * wI.hessian + wI.gradient * g.gradient.transpose() + g.gradient * wI.gradient.transpose();
       wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
       wI.value *= g.value;
       weight_factor[k] = g.value;
     }
     w_.push_back(wI);
   }
-  return mls_shape_functions(nodes.dimension, basis, point, x_, w_, scale, false, shape);
+  return mls_shape_functions(nodes.dimension, basis, point, x_, w_, scale, hessians, shape);
 }
 
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,

@@ -38,8 +38,12 @@ class PointShapes {
                 const EnrichmentRule* enrichment);
   /// The factors g_I of `near` at `point` alone (1 where not enriched), into factors().
   void look_up_factors(const Vec3& point, std::span<const Index> near, const EnrichmentRule* enrichment);
-  /// evaluate() with the factors looked up last.
-  bool evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near);
+  /// evaluate() with the factors looked up last. With `hessians`, shape.hessian
+  /// too: the enriched weight's Hessian is g H_w + grad w grad g^T + grad g
+  /// grad w^T, without w H_g (the factors carry no second derivatives; the
+  /// MLS Hessians still reproduce those of linear fields, zero, exactly).
+  bool evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point, std::span<const Index> near,
+                          bool hessians = false);
   const std::vector<WeightFactor>& factors() const { return factors_; }
   MlsShape shape;
   std::vector<double> weight_factor;

@@ -7,6 +7,7 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <malloc.h>
 #include <vector>
 
@@ -22,7 +23,13 @@
 namespace kerf {
 namespace {
 
-Scene nodal_block(bool stabilization, const std::string& material) {
+/// meshless.stabilization by a benchmark argument: 0 none, 1 the hourglass term, 2 NSNI.
+const char* stabilization_name(std::int64_t argument) {
+  static constexpr const char* names[] = {"none", "hourglass", "nsni"};
+  return names[argument];
+}
+
+Scene nodal_block(const std::string& stabilization, const std::string& material) {
   std::string yaml = R"(
 name: nodal_block
 domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
@@ -36,7 +43,7 @@ solve: {dt: 0.001, duration: 10.0}
 output: {vtk: false}
 )";
   return parse_scene(yaml, "benchmark", ".",
-                     {std::string("discretization.meshless.stabilization=") + (stabilization ? "true" : "false"),
+                     {"discretization.meshless.stabilization=" + stabilization,
                       "material.model=" + material});
 }
 
@@ -47,8 +54,8 @@ double heap_bytes() {
 }
 
 void BM_NodalExplicitStep(benchmark::State& state) {
-  // Arguments: stabilisation on (1) or off (0); linear (0) or corotational (1) material.
-  Scene scene = nodal_block(state.range(0) != 0, state.range(1) ? "corotational" : "linear");
+  // Arguments: stabilisation (stabilization_name); linear (0) or corotational (1) material.
+  Scene scene = nodal_block(stabilization_name(state.range(0)), state.range(1) ? "corotational" : "linear");
   RunReport report;
   auto body = make_body(scene, report);
   MechanicalSystem mechanics(*body, scene, report);
@@ -75,7 +82,7 @@ void BM_NodalExplicitStep(benchmark::State& state) {
 void BM_NodalStepFloor(benchmark::State& state) {
   if (!bench::nodal_floor_supported()) return state.SkipWithError("the floor needs AVX2 and FMA");
   const bool stabilized = state.range(0) != 0;
-  Scene scene = nodal_block(stabilized, "linear");
+  Scene scene = nodal_block(stabilized ? "hourglass" : "none", "linear");
   RunReport report;
   auto body = make_body(scene, report);
   const auto& nodal = dynamic_cast<const NodalBody&>(*body);
@@ -110,9 +117,11 @@ void BM_NodalStepFloor(benchmark::State& state) {
 }
 
 // Setup of the body alone: lattice, Delaunay volumes, k-d tree, neighbour
-// lists, MLS shape functions and gradients, stabilisation pair weights.
+// lists, MLS shape functions and gradients, the stabilisation's tables (the
+// hourglass pair weights, or NSNI's second derivatives and cell moments).
+// Argument: the stabilisation (stabilization_name).
 void BM_NodalSetup(benchmark::State& state) {
-  Scene scene = nodal_block(true, "corotational");
+  Scene scene = nodal_block(stabilization_name(state.range(0)), "corotational");
   double bytes_per_node = 0.0;
   Index nodes = 0;
   for (auto _ : state) {
@@ -126,9 +135,9 @@ void BM_NodalSetup(benchmark::State& state) {
   state.counters["heap_bytes_per_node"] = bytes_per_node;
 }
 
-BENCHMARK(BM_NodalExplicitStep)->Args({1, 0})->Args({0, 0})->Args({1, 1})->Args({0, 1})->Iterations(2000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NodalExplicitStep)->Args({1, 0})->Args({0, 0})->Args({1, 1})->Args({0, 1})->Args({2, 0})->Args({2, 1})->Iterations(2000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_NodalStepFloor)->Arg(1)->Arg(0)->Iterations(2000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_NodalSetup)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_NodalSetup)->Arg(1)->Arg(2)->Iterations(3)->Unit(benchmark::kMillisecond);
 
 const bool paired = (bench::pair_with_floor("BM_NodalExplicitStep/1/0", "BM_NodalStepFloor/1",
                                             "bare linear stabilised pass on the same tables + update"),

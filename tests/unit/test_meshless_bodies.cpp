@@ -89,7 +89,7 @@ void expect_consistent_derivatives(const DiscreteBody& body, const std::string& 
 TEST(NodalBody, ForceAndTangentMatchFiniteDifferencesForEveryMaterial) {
   for (int dim : {2, 3})
     for (MaterialModel model : all_models)
-      for (const char* stab : {"true", "false"})
+      for (const char* stab : {"true", "false", "nsni"})
         for (const char* gradient : {"direct", "smoothed"})
           for (const char* vci : {"none", "linear"})
             expect_consistent_derivatives(
@@ -152,7 +152,7 @@ TEST(NodalBody, VciForcesSumToZero) {
 // CPU picks one: both must give the same forces (to round-off: FMA rounds once).
 TEST(NodalBody, BaselineAndVectorForcePassesAgree) {
   for (MaterialModel model : {MaterialModel::linear, MaterialModel::corotational})
-    for (const char* stab : {"true", "false"})
+    for (const char* stab : {"true", "false", "nsni"})
       for (const char* vci : {"none", "linear"}) {
       auto body = small_body("nodal", 3, model, {std::string("discretization.meshless.stabilization=") + stab,
                                                  std::string("discretization.meshless.vci=") + vci});
@@ -228,25 +228,29 @@ TEST(MeshlessBodies, GroupedPointBlocksAssembleThePointsMatrix) {
 }
 
 TEST(NodalBody, StabilizationIgnoresAffineMotionsOfAnySize) {
-  auto body = small_body("nodal", 3, MaterialModel::corotational);
-  const auto& nodal = dynamic_cast<const NodalBody&>(*body);
-  const Mat3 R = Eigen::AngleAxisd(1.1, Vec3(1, 2, 3).normalized()).toRotationMatrix();
-  const Mat3 A = R * (Mat3() << 1.2, 0.1, 0.0, 0.0, 0.9, 0.2, 0.1, 0.0, 1.1).finished() - Mat3::Identity();
-  Vector affine(body->dof_count()), rotation(body->dof_count());
-  for (Index n = 0; n < body->node_count(); ++n) {
-    const Vec3 x = body->node_position(n);
-    affine.segment<3>(3 * n) = A * x + Vec3(0.01, -0.02, 0.03);
-    rotation.segment<3>(3 * n) = (R - Mat3::Identity()) * x;
+  for (const char* stab : {"hourglass", "nsni"}) {
+    SCOPED_TRACE(stab);
+    auto body = small_body("nodal", 3, MaterialModel::corotational,
+                           {std::string("discretization.meshless.stabilization=") + stab});
+    const auto& nodal = dynamic_cast<const NodalBody&>(*body);
+    const Mat3 R = Eigen::AngleAxisd(1.1, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+    const Mat3 A = R * (Mat3() << 1.2, 0.1, 0.0, 0.0, 0.9, 0.2, 0.1, 0.0, 1.1).finished() - Mat3::Identity();
+    Vector affine(body->dof_count()), rotation(body->dof_count());
+    for (Index n = 0; n < body->node_count(); ++n) {
+      const Vec3 x = body->node_position(n);
+      affine.segment<3>(3 * n) = A * x + Vec3(0.01, -0.02, 0.03);
+      rotation.segment<3>(3 * n) = (R - Mat3::Identity()) * x;
+    }
+    const double scale = nodal.strain_energy(affine);
+    EXPECT_LT(nodal.stabilization_energy(affine), 1e-12 * scale);
+    EXPECT_GT(nodal.stabilization_energy(smooth_field(*body)), 0.0);
+    // A rigid rotation of 63 degrees stresses nothing (corotational material).
+    Vector f;
+    nodal.internal_force(rotation, f);
+    Vector f_stretch;
+    nodal.internal_force(affine, f_stretch);
+    EXPECT_LT(f.norm(), 1e-10 * f_stretch.norm());
   }
-  const double scale = nodal.strain_energy(affine);
-  EXPECT_LT(nodal.stabilization_energy(affine), 1e-12 * scale);
-  EXPECT_GT(nodal.stabilization_energy(smooth_field(*body)), 0.0);
-  // A rigid rotation of 63 degrees stresses nothing (corotational material).
-  Vector f;
-  nodal.internal_force(rotation, f);
-  Vector f_stretch;
-  nodal.internal_force(affine, f_stretch);
-  EXPECT_LT(f.norm(), 1e-10 * f_stretch.norm());
 }
 
 TEST(MeshlessBodies, MassesAndLoadsAddUpToTheirTotals) {

@@ -78,6 +78,25 @@ TEST(SceneReader, OutOfRangeValueNamesKeyValueAndRange) {
                   "0 < linear_tolerance < 1");
 }
 
+// meshless.stabilization took true and false; it now also names its term.
+TEST(SceneReader, StabilizationTakesItsOldBooleansAndItsNames) {
+  const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
+  auto read = [&](const std::string& value) {
+    return testing::scene_from_text(box + "discretization: {method: nodal, meshless: {stabilization: " + value + "}}\n")
+        .discretization.meshless.stabilization;
+  };
+  EXPECT_EQ(read("true"), NodalStabilization::hourglass);
+  EXPECT_EQ(read("false"), NodalStabilization::none);
+  EXPECT_EQ(read("hourglass"), NodalStabilization::hourglass);
+  EXPECT_EQ(read("nsni"), NodalStabilization::nsni);
+  EXPECT_EQ(read("none"), NodalStabilization::none);
+  const std::string m = testing::scene_refusal(box + "discretization: {meshless: {stabilization: nsn}}\n");
+  expect_contains(m, "test.yaml:2:");
+  expect_contains(m, "stabilization");
+  expect_contains(m, "'nsn'");
+  expect_contains(m, "nsni");
+}
+
 TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
   std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
   expect_contains(m, "test.yaml:3:");
