@@ -277,6 +277,10 @@ double memory_mb(const Scene& scene, const ResourceEstimate& e) {
   bytes += shape_table_copies * e.points * e.neighbors * (8.0 * (1 + d) + 8.0);
   if (scene.discretization.method == Method::nodal && scene.discretization.meshless.gradient == NodalGradient::smoothed)
     bytes += smoothed_bytes_per_node * e.nodes;
+  // NSNI: d x d second derivatives a slot of the nodes' table, and d moments a node.
+  if (scene.discretization.method == Method::nodal &&
+      scene.discretization.meshless.stabilization == NodalStabilization::nsni)
+    bytes += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
   bytes += matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros;
   bytes += 64.0 * e.grid_points + 8.0 * 30.0 * e.dofs;  // the grid's columns; the state and work vectors
   return base_mb + bytes / 1048576.0;

@@ -10,6 +10,8 @@
 #include <exception>
 #include <mutex>
 
+#include "core/types.h"
+
 namespace kerf {
 
 class ParallelFailure {
@@ -39,5 +41,20 @@ class ParallelFailure {
   std::mutex mutex_;
   std::exception_ptr first_;
 };
+
+/// work(i, scratch) for every i < count on the region's threads, each with
+/// its own Scratch (default-made, so nothing it holds is shared), in dynamic
+/// chunks of 16; the first exception is rethrown after the region.
+template <class Scratch, class Work>
+void for_each_with_scratch(Index count, Work&& work) {
+  ParallelFailure failure;
+#pragma omp parallel
+  {
+    Scratch scratch;
+#pragma omp for schedule(dynamic, 16)
+    for (Index i = 0; i < count; ++i) failure.run([&] { work(i, scratch); });
+  }
+  failure.rethrow_if_failed();
+}
 
 }  // namespace kerf

@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <numeric>
 
 #include "core/parallel_failure.h"
 #include "geometry/mesh.h"
@@ -55,6 +56,26 @@ void add_forces_of(const ShapeTable& table, const std::vector<double>& hessian, 
   }
 }
 
+template <int Dim>
+double energy_of(const ShapeTable& table, const std::vector<double>& hessian, const std::vector<Vec3>& moment,
+                 const Lame& lame, std::pair<Index, Index> points, const Vector& u) {
+  double energy = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (Index L = points.first; L < points.second; ++L) {
+    auto near = table.neighbours.of(L);
+    const double* H = hessian.data() + Dim * Dim * table.neighbours.start[L];
+    for (int i = 0; i < Dim; ++i) {
+      double eps[Dim][Dim], s[Dim][Dim];
+      strain_derivative<Dim>(H, near, u, i, eps);
+      std::copy(&eps[0][0], &eps[0][0] + Dim * Dim, &s[0][0]);
+      stress_in_place<Dim>(lame, moment[L][i], s);  // 2D: plane strain, eps_zz = 0 adds nothing
+      for (int a = 0; a < Dim; ++a)
+        for (int b = 0; b < Dim; ++b) energy += 0.5 * s[a][b] * eps[a][b];
+    }
+  }
+  return energy;
+}
+
 }  // namespace
 
 NaturalStabilization::NaturalStabilization(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
@@ -62,39 +83,23 @@ NaturalStabilization::NaturalStabilization(const NodeSet& nodes, MlsBasis basis,
     : dim_(nodes.dimension), lame_(lame), moment_(dual_cell_second_moments(nodes.cells)) {
   hessian_.assign(static_cast<std::size_t>(dim_) * dim_ * at_nodes.neighbours.index.size(), 0.0);
   std::vector<Index> rows(nodes.size());
-  for (Index L = 0; L < nodes.size(); ++L) rows[L] = L;
-  fill_rows(nodes, basis, at_nodes, rows, enrichment);
+  std::iota(rows.begin(), rows.end(), Index{0});
+  refresh(nodes, basis, at_nodes, rows, enrichment);
 }
 
 void NaturalStabilization::refresh(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
                                    std::span<const Index> rows, const EnrichmentRule* enrichment) {
-  fill_rows(nodes, basis, at_nodes, rows, enrichment);
-}
-
-void NaturalStabilization::fill_rows(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
-                                     std::span<const Index> rows, const EnrichmentRule* enrichment) {
-  const Index count = static_cast<Index>(rows.size());
   const int dim = dim_;
-  ParallelFailure failure;
-#pragma omp parallel
-  {
-    PointShapes scratch;
-#pragma omp for schedule(dynamic, 16)
-    for (Index r = 0; r < count; ++r)
-      failure.run([&] {
-        const Index L = rows[r];
-        auto near = at_nodes.neighbours.of(L);
-        double* H = hessian_.data() + static_cast<std::size_t>(dim) * dim * at_nodes.neighbours.start[L];
-        scratch.look_up_factors(nodes.positions[L], near, enrichment);
-        // A singular moment matrix was refused (or zeroed) by the table's own
-        // build: the row then adds nothing here either.
-        const bool ok = scratch.evaluate_looked_up(nodes, basis, nodes.positions[L], near, true);
-        for (std::size_t k = 0; k < near.size(); ++k)
-          for (int a = 0; a < dim; ++a)
-            for (int b = 0; b < dim; ++b) H[dim * dim * k + dim * a + b] = ok ? scratch.shape.hessian[k](a, b) : 0.0;
-      });
-  }
-  failure.rethrow_if_failed();
+  for_each_with_scratch<PointShapes>(static_cast<Index>(rows.size()), [&](Index r, PointShapes& scratch) {
+    const Index L = rows[r];
+    auto near = at_nodes.neighbours.of(L);
+    double* H = hessian_.data() + static_cast<std::size_t>(dim) * dim * at_nodes.neighbours.start[L];
+    scratch.look_up_factors(nodes.positions[L], near, enrichment);
+    const bool ok = scratch.evaluate_looked_up(nodes, basis, nodes.positions[L], near, true);
+    for (std::size_t k = 0; k < near.size(); ++k)
+      for (int a = 0; a < dim; ++a)
+        for (int b = 0; b < dim; ++b) H[dim * dim * k + dim * a + b] = ok ? scratch.shape.hessian[k](a, b) : 0.0;
+  });
 }
 
 void NaturalStabilization::add_forces(const ShapeTable& at_nodes, std::pair<Index, Index> points, const Vector& u,
@@ -126,30 +131,8 @@ void NaturalStabilization::add_forces(const ShapeTable& at_nodes, std::pair<Inde
 
 double NaturalStabilization::energy(const ShapeTable& at_nodes, std::pair<Index, Index> points,
                                     const Vector& u) const {
-  double energy = 0.0;
-  const int dim = dim_;
-#pragma omp parallel for schedule(static) reduction(+ : energy)
-  for (Index L = points.first; L < points.second; ++L) {
-    auto near = at_nodes.neighbours.of(L);
-    const double* H = hessian_.data() + static_cast<std::size_t>(dim) * dim * at_nodes.neighbours.start[L];
-    for (int i = 0; i < dim; ++i) {
-      double eps[3][3] = {}, s[3][3];
-      if (dim == 3) {
-        strain_derivative<3>(H, near, u, i, eps);
-      } else {
-        double e2[2][2];
-        strain_derivative<2>(H, near, u, i, e2);
-        for (int a = 0; a < 2; ++a)
-          for (int b = 0; b < 2; ++b) eps[a][b] = e2[a][b];
-      }
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) s[a][b] = eps[a][b];
-      stress_in_place<3>(lame_, moment_[L][i], s);  // 2D: plane strain, the zero row adds nothing
-      for (int a = 0; a < 3; ++a)
-        for (int b = 0; b < 3; ++b) energy += 0.5 * s[a][b] * eps[a][b];
-    }
-  }
-  return energy;
+  return dim_ == 3 ? energy_of<3>(at_nodes, hessian_, moment_, lame_, points, u)
+                   : energy_of<2>(at_nodes, hessian_, moment_, lame_, points, u);
 }
 
 void NaturalStabilization::add_block(const ShapeTable& at_nodes, Index L, std::vector<double>& block) const {

@@ -32,7 +32,9 @@ class NaturalStabilization {
   NaturalStabilization(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
                        const EnrichmentRule* enrichment, const Lame& lame);
 
-  /// Recomputes the second derivatives of rows `rows` (a cut grew).
+  /// Recomputes the second derivatives of rows `rows` (a cut grew). A row
+  /// whose moment matrix is singular (refused, or zeroed, by the table's own
+  /// build) gets zeros: it adds nothing here either.
   void refresh(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes, std::span<const Index> rows,
                const EnrichmentRule* enrichment);
 
@@ -45,13 +47,8 @@ class NaturalStabilization {
 
   /// Bytes one force pass reads from the tables (second derivatives, moments).
   std::size_t table_bytes() const { return (hessian_.size() + 3 * moment_.size()) * sizeof(double); }
-  /// M_L (m^5; 2D: m^4), for tests.
-  const std::vector<Vec3>& moments() const { return moment_; }
 
  private:
-  void fill_rows(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes, std::span<const Index> rows,
-                 const EnrichmentRule* enrichment);
-
   int dim_;
   Lame lame_;
   std::vector<double> hessian_;  // per slot of at_nodes, dim x dim: d_a d_b psi (1/m^2)

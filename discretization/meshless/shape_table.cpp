@@ -55,30 +55,22 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
                Index* singular = nullptr) {
   Index failed = -1;
   filled.assign(count, 0);
-  ParallelFailure failure;
-#pragma omp parallel
-  {
-    PointShapes scratch;
-#pragma omp for schedule(dynamic, 16)
-    for (Index i = 0; i < count; ++i)
-      failure.run([&] {
-        const Index p = rows(i);
-        const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
-        filled[i] = result != Filled::unchanged;
-        if (result != Filled::singular) return;
-        if (singular) {  // no shape functions there: the row adds nothing
-          const std::size_t s0 = t.neighbours.start[p], s1 = t.neighbours.start[p + 1];
-          std::fill(t.value.begin() + s0, t.value.begin() + s1, 0.0);
-          std::fill(t.gradient.begin() + t.dimension * s0, t.gradient.begin() + t.dimension * s1, 0.0);
+  for_each_with_scratch<PointShapes>(count, [&](Index i, PointShapes& scratch) {
+    const Index p = rows(i);
+    const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
+    filled[i] = result != Filled::unchanged;
+    if (result != Filled::singular) return;
+    if (singular) {  // no shape functions there: the row adds nothing
+      const std::size_t s0 = t.neighbours.start[p], s1 = t.neighbours.start[p + 1];
+      std::fill(t.value.begin() + s0, t.value.begin() + s1, 0.0);
+      std::fill(t.gradient.begin() + t.dimension * s0, t.gradient.begin() + t.dimension * s1, 0.0);
 #pragma omp atomic
-          ++*singular;
-          return;
-        }
+      ++*singular;
+      return;
+    }
 #pragma omp critical
-        if (failed < 0 || p < failed) failed = p;
-      });
-  }
-  failure.rethrow_if_failed();
+    if (failed < 0 || p < failed) failed = p;
+  });
   if (failed < 0) return;
   const Index covering = static_cast<Index>(t.neighbours.of(failed).size());
   throw Error(singular_moment_message(t.dimension, basis, points[failed], covering, t.condition[failed], what, context,

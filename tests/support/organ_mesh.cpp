@@ -1,9 +1,11 @@
 #include "support/organ_mesh.h"
 
 #include <gmsh.h>
+#include <unistd.h>
 
 #include "core/thread_scope.h"
 #include "geometry/gmsh_session.h"
+#include "support/test_support.h"
 
 namespace kerf::testing {
 
@@ -34,6 +36,15 @@ void write_organ_mesh(const std::string& path, double size_left, double size_rig
   gmsh::option::setNumber("Mesh.Binary", 0);
   gmsh::write(path);
   gmsh::clear();
+}
+
+const std::string& graded_organ_file() {
+  static const std::string path = [] {
+    const std::string p = output_directory("GradedOrgan_" + std::to_string(::getpid())) + "/organ.msh";
+    write_organ_mesh(p, 0.003, 0.006);
+    return p;
+  }();
+  return path;
 }
 
 }  // namespace kerf::testing

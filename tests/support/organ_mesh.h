@@ -10,4 +10,9 @@ namespace kerf::testing {
 /// (m) at x = -35 mm growing linearly to `size_right` at x = +35 mm.
 void write_organ_mesh(const std::string& path, double size_left, double size_right);
 
+/// The organ graded 3 to 6 mm, written once per process into a folder of the
+/// process's own (ctest runs tests two at a time, each in its process, and
+/// output_directory empties the folder it makes); its path.
+const std::string& graded_organ_file();
+
 }  // namespace kerf::testing

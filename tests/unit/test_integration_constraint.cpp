@@ -7,8 +7,6 @@
 // (sigma n on the outer boundary, nothing on the cut's faces).
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <map>
 
 #include "discretization/body_capabilities.h"
@@ -53,21 +51,8 @@ Mat3 enclosed_volume(const DiscreteBody& body, const std::function<bool(const Ve
   return sum;
 }
 
-/// The organ of organ_mesh.h, graded 3 to 6 mm, written once per process.
-const std::string& organ_file() {
-  static const std::string path = [] {
-    // A folder of this process's own: ctest runs these tests two at a time, each
-    // in its process, and output_directory empties the folder it makes.
-    const std::string p =
-        testing::output_directory("IntegrationConstraintOrgan_" + std::to_string(::getpid())) + "/organ.msh";
-    testing::write_organ_mesh(p, 0.003, 0.006);
-    return p;
-  }();
-  return path;
-}
-
 std::string organ_scene(double pressure) {
-  return "domain: {mesh: " + organ_file() + "}\n"
+  return "domain: {mesh: " + testing::graded_organ_file() + "}\n"
          "material: {young: 1.0e4, poisson: 0.3}\n"
          "discretization: {method: nodal, meshless: {nodes: mesh, vci: linear}}\n"
          "boundary:\n"

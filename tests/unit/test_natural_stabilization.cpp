@@ -4,8 +4,6 @@
 // the linear patch test it must not spoil (curved graded mesh, a cut).
 #include <gtest/gtest.h>
 
-#include <unistd.h>
-
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <array>
@@ -119,17 +117,6 @@ TEST(NaturalStabilization, FreeBlockKeepsOnlyItsRigidModesAtZero) {
   EXPECT_GT(softest("nsni"), 0.05);
 }
 
-/// The organ of organ_mesh.h, graded 3 to 6 mm, written once per process.
-const std::string& organ_file() {
-  static const std::string path = [] {
-    const std::string p =
-        testing::output_directory("NaturalStabilizationOrgan_" + std::to_string(::getpid())) + "/organ.msh";
-    testing::write_organ_mesh(p, 0.003, 0.006);
-    return p;
-  }();
-  return path;
-}
-
 /// max |f_int(u) - f_ext| / max |f_ext| for u = strain x (+ a rigid motion), sigma = -p I.
 double hydrostatic_patch_residual(const DiscreteBody& body, double p) {
   const double young = 1.0e4, poisson = 0.3;
@@ -151,7 +138,7 @@ double hydrostatic_patch_residual(const DiscreteBody& body, double p) {
 // test_integration_constraint.cpp).
 TEST(NaturalStabilization, KeepsTheLinearPatchTestOnACurvedGradedMesh) {
   const double p = 100.0;
-  const std::string organ = "domain: {mesh: " + organ_file() + "}\n"
+  const std::string organ = "domain: {mesh: " + testing::graded_organ_file() + "}\n"
                             "material: {young: 1.0e4, poisson: 0.3}\n"
                             "discretization: {method: nodal, meshless: {nodes: mesh, vci: linear, stabilization: nsni}}\n"
                             "boundary:\n"
