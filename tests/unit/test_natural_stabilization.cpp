@@ -1,7 +1,8 @@
 // Naturally stabilized nodal integration (natural_stabilization.h): the dual
-// cells' second moments against independent integrals, the free spectrum
-// (rigid modes only, where plain nodal integration has spurious ones), and
-// the linear patch test it must not spoil (curved graded mesh, a cut).
+// cells' second moments against independent integrals, and the free
+// spectrum (rigid modes only at zero, where plain nodal integration has
+// spurious ones). The linear patch tests it must not spoil, on the curved
+// graded mesh and across a cut: test_integration_constraint.cpp.
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
@@ -11,7 +12,6 @@
 #include "discretization/body_factory.h"
 #include "geometry/mesh.h"
 #include "solvers/sparse_assembly.h"
-#include "support/organ_mesh.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -115,39 +115,6 @@ TEST(NaturalStabilization, FreeBlockKeepsOnlyItsRigidModesAtZero) {
   };
   EXPECT_LT(softest("none"), 0.01);
   EXPECT_GT(softest("nsni"), 0.05);
-}
-
-/// max |f_int(u) - f_ext| / max |f_ext| for u = strain x (+ a rigid motion), sigma = -p I.
-double hydrostatic_patch_residual(const DiscreteBody& body, double p) {
-  const double young = 1.0e4, poisson = 0.3;
-  const Mat3 strain = -p * (1 - 2 * poisson) / young * Mat3::Identity();
-  const Vec3 translation(1e-4, -2e-4, 3e-4), rotation(2e-3, -1e-3, 1.5e-3);
-  Vector u(body.dof_count());
-  for (Index n = 0; n < body.node_count(); ++n) {
-    const Vec3 x = body.node_position(n);
-    u.segment<3>(3 * n) = strain * x + translation + rotation.cross(x);
-  }
-  Vector f_int, f_ext;
-  body.internal_force(u, f_int);
-  body.external_force(1.0, f_ext);
-  return (f_int - f_ext).lpNorm<Eigen::Infinity>() / f_ext.lpNorm<Eigen::Infinity>();
-}
-
-// The stabilisation sees no linear field: with VCI the patch test on the nodes
-// of a curved graded gmsh mesh still holds to round-off (with a cut:
-// test_integration_constraint.cpp).
-TEST(NaturalStabilization, KeepsTheLinearPatchTestOnACurvedGradedMesh) {
-  const double p = 100.0;
-  const std::string organ = "domain: {mesh: " + testing::graded_organ_file() + "}\n"
-                            "material: {young: 1.0e4, poisson: 0.3}\n"
-                            "discretization: {method: nodal, meshless: {nodes: mesh, vci: linear, stabilization: nsni}}\n"
-                            "boundary:\n"
-                            "  - {select: {box: {min: [-1, -1, -1], max: [1, 1, 1]}}, pressure: 100}\n"
-                            "solve: {analysis: static}\n";
-  for (const char* gradient : {"direct", "smoothed"}) {
-    auto body = body_of(organ, {std::string("discretization.meshless.gradient=") + gradient});
-    EXPECT_LT(hydrostatic_patch_residual(*body, p), 1e-9) << gradient;
-  }
 }
 
 }  // namespace
