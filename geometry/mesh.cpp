@@ -59,10 +59,6 @@ std::vector<double> dual_cell_volumes(const Mesh& mesh) {
   return volume;
 }
 
-namespace {
-
-/// int_S y_i^2 over the simplex S with corners p + y_k (k <= dim), about p:
-/// |S| / ((dim + 1)(dim + 2)) (sum_k y_k y_k^T + s s^T)_ii, s = sum_k y_k.
 Vec3 simplex_second_moment(std::span<const Vec3> y, double measure) {
   Vec3 s = Vec3::Zero(), squares = Vec3::Zero();
   for (const Vec3& v : y) {
@@ -73,36 +69,44 @@ Vec3 simplex_second_moment(std::span<const Vec3> y, double measure) {
   return measure / (n * (n + 1.0)) * (squares + s.cwiseProduct(s));
 }
 
-}  // namespace
-
-std::vector<Vec3> dual_cell_second_moments(const Mesh& mesh) {
+void for_each_barycentric_piece(const Mesh& mesh, Index c, const BarycentricPieceVisitor& visit) {
   const int dim = mesh.dimension, corners = dim + 1;
   // 2D: 6 sub-triangles of a triangle; 3D: 24 sub-tetrahedra of a tetrahedron.
   const double pieces_per_corner = dim == 3 ? 6.0 : 2.0;
+  auto n = mesh.cell(c);
+  const double piece = std::abs(cell_measure(mesh, c)) / (corners * pieces_per_corner);
+  Vec3 centroid = Vec3::Zero();
+  for (int a = 0; a < corners; ++a) centroid += mesh.nodes[n[a]] / corners;
+  for (int a = 0; a < corners; ++a) {
+    const Vec3& p = mesh.nodes[n[a]];
+    std::array<int, 3> others{};
+    int count = 0;
+    for (int b = 0; b < corners; ++b)
+      if (b != a) others[count++] = b;  // ascending: next_permutation walks every order
+    do {  // the sub-simplex lambda_a >= lambda_others[0] >= lambda_others[1] (>= ...)
+      const Vec3 edge = 0.5 * (p + mesh.nodes[n[others[0]]]);
+      if (dim == 2) {
+        const std::array<Vec3, 3> y{p, edge, centroid};
+        visit(a, y, piece);
+      } else {
+        const Vec3 face = (p + mesh.nodes[n[others[0]]] + mesh.nodes[n[others[1]]]) / 3.0;
+        const std::array<Vec3, 4> y{p, edge, face, centroid};
+        visit(a, y, piece);
+      }
+    } while (std::next_permutation(others.begin(), others.begin() + count));
+  }
+}
+
+std::vector<Vec3> dual_cell_second_moments(const Mesh& mesh) {
   std::vector<Vec3> moment(mesh.nodes.size(), Vec3::Zero());
   for (Index c = 0; c < mesh.cell_count(); ++c) {
     auto n = mesh.cell(c);
-    const double piece = std::abs(cell_measure(mesh, c)) / (corners * pieces_per_corner);
-    Vec3 centroid = Vec3::Zero();
-    for (int a = 0; a < corners; ++a) centroid += mesh.nodes[n[a]] / corners;
-    for (int a = 0; a < corners; ++a) {
-      const Vec3& p = mesh.nodes[n[a]];
-      std::array<int, 3> others{};
-      int count = 0;
-      for (int b = 0; b < corners; ++b)
-        if (b != a) others[count++] = b;  // ascending: next_permutation walks every order
-      do {  // the sub-simplex lambda_a >= lambda_others[0] >= lambda_others[1] (>= ...)
-        const Vec3 edge = 0.5 * (p + mesh.nodes[n[others[0]]]) - p;
-        if (dim == 2) {
-          const std::array<Vec3, 3> y{Vec3::Zero(), edge, centroid - p};
-          moment[n[a]] += simplex_second_moment(y, piece);
-        } else {
-          const Vec3 face = (p + mesh.nodes[n[others[0]]] + mesh.nodes[n[others[1]]]) / 3.0 - p;
-          const std::array<Vec3, 4> y{Vec3::Zero(), edge, face, centroid - p};
-          moment[n[a]] += simplex_second_moment(y, piece);
-        }
-      } while (std::next_permutation(others.begin(), others.begin() + count));
-    }
+    for_each_barycentric_piece(mesh, c, [&](int corner, std::span<const Vec3> vertices, double measure) {
+      const Vec3& p = mesh.nodes[n[corner]];
+      std::array<Vec3, 4> y;
+      for (std::size_t k = 0; k < vertices.size(); ++k) y[k] = vertices[k] - p;
+      moment[n[corner]] += simplex_second_moment(std::span<const Vec3>(y.data(), vertices.size()), measure);
+    });
   }
   return moment;
 }

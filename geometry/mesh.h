@@ -4,6 +4,7 @@
 //   tri6  mid-edge nodes 3..5 on edges (0,1) (1,2) (0,2).
 // Cells are positively oriented (tets: positive volume; triangles: counter-clockwise).
 #include <array>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -40,6 +41,17 @@ double cell_measure(const Mesh& mesh, Index c);
 /// Each node's share of the straight-sided cells around it (1/corners of each),
 /// i.e. the measure of its barycentric dual cell; nodes of no cell get 0.
 std::vector<double> dual_cell_volumes(const Mesh& mesh);
+
+/// int_S (x_i - p_i)^2 over the simplex S with corners p + y_k, of measure
+/// `measure`: |S| / ((dim + 1)(dim + 2)) (sum_k y_k y_k^T + s s^T)_ii, s = sum_k y_k.
+Vec3 simplex_second_moment(std::span<const Vec3> y, double measure);
+
+/// The barycentric subdivision of the straight-sided cell c, piece by piece:
+/// visit(a, vertices, measure) for each of corner a's dim! simplices (the
+/// corner, an edge midpoint, a face centroid[, the cell's centroid]), which
+/// together are corner a's part of its dual cell.
+using BarycentricPieceVisitor = std::function<void(int corner, std::span<const Vec3> vertices, double measure)>;
+void for_each_barycentric_piece(const Mesh& mesh, Index c, const BarycentricPieceVisitor& visit);
 
 /// Each node's second moments of its barycentric dual cell about the node
 /// itself, int (x_i - x_node,i)^2 over the cell (m^5; 2D: m^4; z = 0), exact:
