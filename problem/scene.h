@@ -3,6 +3,7 @@
 // Units are SI (m, kg, s, Pa, N). In 2D (plane strain) vectors keep z = 0.
 #include <array>
 #include <map>
+#include <algorithm>
 #include <optional>
 #include <string>
 #include <vector>
@@ -42,6 +43,11 @@ enum class VciOrder { none, linear };
 /// nodal: what holds the zero-energy modes (none, the hourglass-type pair
 /// term, or naturally stabilized nodal integration's strain gradients).
 enum class NodalStabilization { none, hourglass, nsni };
+/// nodal: the cells a cut crosses kept whole (the paper's nodal points), or
+/// split: the nodes' volumes on their own side, the cells at the cut
+/// integrated by their parts (visible_dual_cells.h); automatic: split unless
+/// a cut grows (cut_cells_of).
+enum class CutCells { automatic, whole, split };
 enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
@@ -97,6 +103,7 @@ struct MeshlessOptions {
   /// nodal: test gradients corrected to keep the integration constraint
   /// (integration_constraint.h); off until the studies are re-run with it.
   VciOrder vci = VciOrder::none;
+  CutCells cut_cells = CutCells::automatic;
   /// Nitsche's alpha over its local estimate; unset: the method's default
   /// (nitsche_safety_default).
   std::optional<double> nitsche_safety;
@@ -210,6 +217,20 @@ struct Scene {
   SourceLocation locate(const std::string& key) const;
 };
 
+/// meshless.cut_cells as it acts: `auto` is split for direct nodal
+/// integration without VCI (the only kind split cells are built for) unless
+/// a cut grows, where splitting costs a growth far more than the paper's
+/// update (docs/meshless_integration.md, "Cells at a cut").
+inline CutCells cut_cells_of(const Scene& scene) {
+  const MeshlessOptions& m = scene.discretization.meshless;
+  if (m.cut_cells != CutCells::automatic) return m.cut_cells;
+  const bool grows = std::any_of(scene.cuts.begin(), scene.cuts.end(),
+                                 [](const Cut& c) { return !c.times.empty() && c.times.back() > 0.0; });
+  const bool built_for = scene.discretization.method == Method::nodal && m.gradient == NodalGradient::direct &&
+                         m.vci == VciOrder::none;
+  return built_for && !grows ? CutCells::split : CutCells::whole;
+}
+
 /// The scene file's spelling of each value of an enum, in declaration order:
 /// the reader, `to_string` and the resolved-scene echo all use these.
 template <class E>
@@ -229,6 +250,7 @@ KERF_ENUM_NAMES(EssentialMethod, "penalty", "nitsche", "parameters");
 KERF_ENUM_NAMES(NodalGradient, "direct", "smoothed");
 KERF_ENUM_NAMES(VciOrder, "none", "linear");
 KERF_ENUM_NAMES(NodalStabilization, "none", "hourglass", "nsni");
+KERF_ENUM_NAMES(CutCells, "auto", "whole", "split");
 KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");

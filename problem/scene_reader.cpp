@@ -174,8 +174,8 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
   }
   if (f.has("meshless")) {
     YamlField m = f["meshless"];
-    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient", "vci",
-                  "nitsche_safety"});
+    m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient",
+                  "vci", "cut_cells", "nitsche_safety"});
     MeshlessOptions& o = d.meshless;
     if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
@@ -192,6 +192,7 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     if (m.has("stabilization")) o.stabilization = read_stabilization(m["stabilization"]);
     if (m.has("gradient")) o.gradient = m["gradient"].enumeration<NodalGradient>();
     if (m.has("vci")) o.vci = m["vci"].enumeration<VciOrder>();
+    if (m.has("cut_cells")) o.cut_cells = m["cut_cells"].enumeration<CutCells>();
     if (m.has("nitsche_safety")) o.nitsche_safety = m["nitsche_safety"].number();
   }
 }

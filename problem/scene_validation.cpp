@@ -299,6 +299,15 @@ void validate(const Scene& scene) {
               "value 'linear' with solve.integrator '" + std::string(to_string(scene.solve.integrator)) +
                   "': its unsymmetric stiffness gains energy in an integrator that does not dissipate it; expected "
                   "vci: none, or solve.integrator: implicit-euler");
+  const MeshlessOptions& meshless = scene.discretization.meshless;
+  if (meshless.cut_cells == CutCells::split)
+    r.require(scene.discretization.method == Method::nodal && meshless.gradient == NodalGradient::direct &&
+                  meshless.vci == VciOrder::none,
+              "discretization.meshless.cut_cells",
+              "value 'split' with method '" + std::string(to_string(scene.discretization.method)) + "', gradient '" +
+                  to_string(meshless.gradient) + "', vci '" + to_string(meshless.vci) +
+                  "': split cells are built for direct nodal integration without VCI; expected cut_cells: auto or "
+                  "whole, or method: nodal with gradient: direct and vci: none");
   r.in_range(scene.output.vtk_every >= 0, "output.vtk.every", scene.output.vtk_every, "every >= 0 (steps; 0: none)");
   for (std::size_t i = 0; i < scene.output.probes.size(); ++i) validate_probe(r, scene, i);
 }

@@ -5,6 +5,7 @@
 // on nodal parameters, boundary loads integrated with MLS on the background
 // mesh's boundary facets, the scene's cuts (enriched MLS weights), and the
 // ParaView snapshot of the nodes.
+#include <functional>
 #include <memory>
 #include <optional>
 #include <span>
@@ -17,6 +18,7 @@
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "discretization/meshless/smoothed_gradient.h"
+#include "discretization/meshless/visible_dual_cells.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
@@ -74,8 +76,36 @@ class MeshlessDomain {
   /// Brings the cuts to time t. Returns the nodes whose enriched weight
   /// changed (sorted; empty when no piece appeared) after recomputing the
   /// rows of at_nodes() they touch whose factors changed (with smoothed
-  /// gradients, every row they touch); `rows`, when given, receives those rows.
-  std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr);
+  /// gradients, every row they touch); `rows`, when given, receives those
+  /// rows; `volumes` the nodes whose volume (and second moments) changed with
+  /// the cells the new pieces cross (visible_dual_cells.h).
+  std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr,
+                                            std::vector<Index>* volumes = nullptr);
+  /// Nodal integration at a cut (direct gradients, meshless.cut_cells: split):
+  /// the cells a cut splits and those its front runs through or next to are
+  /// integrated by their parts, one point per corner's part at its centroid
+  /// weighted by its volume (a part a cut hands to another corner is that
+  /// corner's, on its side: visible_dual_cells.h); the nodes' own points keep
+  /// the rest of their cells. Empty `position` without such cells.
+  struct CutCellPoints {
+    std::vector<Vec3> position;
+    std::vector<double> weight;       // m^3 (2D m^2)
+    std::vector<double> node_volume;  // per node: its own point's weight, the rest of its cell
+    std::vector<Vec3> node_moment;    // per node: that rest's second moments (NSNI)
+    Index cells = 0;
+  };
+  CutCellPoints cut_cell_points() const;
+  /// Do cut_cell_points() change as the cuts grow?
+  bool cut_cell_points_grow() const { return visible_cells_ && growing_; }
+  /// For a growing cut, every group of nodes a point of cut_cell_points() may
+  /// ever join, at any stage of the growth (the sparsity is fixed at set-up):
+  /// per cell near the whole cut, the nodes whose support reaches the cell.
+  void visit_cut_cell_reach(const std::function<void(std::span<const Index>)>& visit) const;
+  /// NSNI's second moments of the nodes' cells, those a cut crosses split as
+  /// the volumes are; null when no cut splits cells.
+  const std::vector<Vec3>* split_second_moments() const {
+    return visible_cells_ ? &visible_cells_->second_moment() : nullptr;
+  }
   /// Does the support of one of these nodes cover a boundary-load quadrature
   /// point (then the load vector must be integrated again)?
   bool boundary_loads_touch(std::span<const Index> nodes) const;
@@ -125,6 +155,17 @@ class MeshlessDomain {
   /// direction where loads act (their rule), 2 elsewhere (the weak conditions' rule).
   BoundaryQuadrature closed_boundary_facets(const Scene& scene) const;
   BoundaryQuadrature cut_faces(Index cut, Index first_piece, Index end_piece) const;
+  /// The cells of nodes_.cells the piece may meet.
+  std::vector<Index> cells_near_piece(const CutPiece& piece) const;
+  /// Splits the cells the pieces since the last call cross (nodal
+  /// integration, direct gradients); returns the nodes whose volume changed.
+  std::vector<Index> update_visible_cells();
+  /// The cells a cut's front passes through or next to (a few cells' size).
+  std::vector<Index> front_cells() const;
+  /// Does cell c (of nodes_.cells) hold x, its faces included?
+  bool holds(Index c, const Vec3& x) const;
+  /// A cell's centroid and the largest distance of a corner from it.
+  std::pair<Vec3, double> cell_ball(Index c) const;
   /// boundary_terms_ from scratch; for a growing cut, the points and their
   /// shape functions are kept to be updated.
   void build_boundary_terms(const Scene& scene);
@@ -158,6 +199,8 @@ class MeshlessDomain {
   std::vector<Index> boundary_pending_;  // nodes growths changed since the last update_boundary_terms
   mutable Index boundary_singular_ = 0;  // boundary points left out, no MLS there (set-up and growths)
   std::vector<Index> slot_row_;  // per slot of at_nodes_: its row (built with covered_)
+  std::unique_ptr<VisibleDualCells> visible_cells_;  // nodal, direct gradients, cuts: the volumes split by them
+  std::vector<Index> volumes_taken_;                 // per cut: pieces the volumes have seen
 };
 
 }  // namespace kerf

@@ -79,8 +79,9 @@ double energy_of(const ShapeTable& table, const std::vector<double>& hessian, co
 }  // namespace
 
 NaturalStabilization::NaturalStabilization(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
-                                           const EnrichmentRule* enrichment, const Lame& lame)
-    : dim_(nodes.dimension), lame_(lame), moment_(dual_cell_second_moments(nodes.cells)) {
+                                           const EnrichmentRule* enrichment, const Lame& lame,
+                                           std::vector<Vec3> moments)
+    : dim_(nodes.dimension), lame_(lame), moment_(std::move(moments)) {
   hessian_.assign(static_cast<std::size_t>(dim_) * dim_ * at_nodes.neighbours.index.size(), 0.0);
   std::vector<Index> rows(nodes.size());
   std::iota(rows.begin(), rows.end(), Index{0});

@@ -27,10 +27,13 @@ namespace kerf {
 class NaturalStabilization {
  public:
   /// The second derivatives at the nodes of the shape functions of `at_nodes`'
-  /// rows (its neighbour lists), with the cuts' enrichment when given; the
-  /// moments of the node set's dual cells.
+  /// rows (its neighbour lists), with the cuts' enrichment when given;
+  /// `moments` the cells' second moments, per node (M_L, i).
   NaturalStabilization(const NodeSet& nodes, MlsBasis basis, const ShapeTable& at_nodes,
-                       const EnrichmentRule* enrichment, const Lame& lame);
+                       const EnrichmentRule* enrichment, const Lame& lame, std::vector<Vec3> moments);
+
+  /// The cells' moments changed (a cut grew across them).
+  void set_moments(std::vector<Vec3> moments) { moment_ = std::move(moments); }
 
   /// Recomputes the second derivatives of rows `rows` (a cut grew). A row
   /// whose moment matrix is singular (refused, or zeroed, by the table's own

@@ -14,7 +14,8 @@ namespace kerf {
 namespace {
 
 /// Node I's part of the terms (its slots and its sums), overwritten.
-void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu, Index I, StabilizationPairs& t) {
+void pair_row(const NodeSet& nodes, const ShapeTable& table, std::span<const double> volume, double c, double mu,
+              Index I, StabilizationPairs& t) {
   const int dim = nodes.dimension;
   auto near = table.neighbours.of(I);
   const Index s0 = table.neighbours.start[I];
@@ -29,7 +30,7 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, double c, double mu
   std::fill_n(t.lever_moment.begin() + 9 * I, 9, 0.0);
   for (std::size_t j = 0; j < near.size(); ++j) {
     const Index s = s0 + static_cast<Index>(j);
-    const double k = t.stiffness[s] *= c * mu * nodes.volume[I] / normaliser;
+    const double k = t.stiffness[s] *= c * mu * volume[I] / normaliser;
     const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
     for (int i = 0; i < dim; ++i) {
       t.lever_sum[3 * I + i] += k * X[i];
@@ -51,23 +52,23 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
     constraints_ = std::make_unique<WeakBoundaryConditions>(
         scene, domain_, law_, essential == EssentialMethod::nitsche, 2,
         WeakBoundaryConditions::VolumePoints{domain_.at_nodes(), nodes.volume, nodes.positions});
+  integrate_cut_cells();
   share_nodes(share);
   if (stabilized_) {
     const std::size_t slots = domain_.at_nodes().neighbours.index.size();
     pairs_ = {std::vector<double>(slots, 0.0), std::vector<double>(3 * nodes.size(), 0.0),
               std::vector<double>(9 * nodes.size(), 0.0)};
     for (Index I = 0; I < nodes.size(); ++I)
-      pair_row(nodes, domain_.at_nodes(), default_stabilization, law_.lame().mu, I, pairs_);
+      pair_row(nodes, domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, I, pairs_);
   }
   if (scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     natural_ = std::make_unique<NaturalStabilization>(nodes, scene.discretization.meshless.basis, domain_.at_nodes(),
-                                                      domain_.enrichment(), law_.lame());
+                                                      domain_.enrichment(), law_.lame(), cell_moments());
   const int dim = domain_.dimension();
   if (dim == 3) position4_ = padded_positions(nodes.positions);
-  load_ = Vector::Zero(dof_count());
-  for (Index I = 0; I < nodes.size(); ++I)
-    for (int i = 0; i < dim; ++i) load_[dim * I + i] = density_ * nodes.volume[I] * scene.gravity[i];
-  body_load_ = load_;
+  body_load_ = Vector::Zero(dof_count());
+  for (Index I = 0; I < nodes.size(); ++I) weigh_node(I);
+  load_ = body_load_;
   domain_.add_boundary_loads(scene, load_);
   if (constraints_)
     dirichlet_ = domain_.nodal_constraints(
@@ -77,9 +78,81 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
   correct_test_gradients();
 }
 
+void NodalBody::weigh_node(Index I) {
+  const int dim = domain_.dimension();
+  for (int i = 0; i < dim; ++i) body_load_[dim * I + i] = density_ * domain_.nodes().volume[I] * scene_.gravity[i];
+}
+
+void NodalBody::integrate_cut_cells() {
+  point_volume_ = domain_.nodes().volume;
+  rest_moments_.clear();
+  cut_points_.reset();
+  cut_schedule_ = {};
+  cut_cells_ = 0;
+  MeshlessDomain::CutCellPoints points = domain_.cut_cell_points();
+  if (points.position.empty()) return;
+  for (double& v : points.node_volume) v = std::max(v, 0.0);  // round-off of a whole cell taken away
+  point_volume_ = std::move(points.node_volume);
+  rest_moments_ = std::move(points.node_moment);
+  cut_cells_ = points.cells;
+  ShapeTable shapes = domain_.shapes_at(points.position, "a point of a cell at a cut");
+  cut_points_ = std::make_unique<PointIntegration>(std::move(shapes), std::move(points.position),
+                                                   std::move(points.weight), domain_.nodes().positions, 1);
+  own_cut_points_ = even_part(cut_points_->point_count(), share_.rank, share_.count);
+}
+
+std::vector<Index> NodalBody::reintegrate_cut_cells() {
+  const std::vector<double> before = point_volume_;
+  integrate_cut_cells();
+  std::vector<Index> changed;
+  for (Index I = 0; I < node_count(); ++I)
+    if (point_volume_[I] != before[I]) changed.push_back(I);
+  return changed;
+}
+
+void NodalBody::add_figures(std::map<std::string, double>& extras) const {
+  MeshlessBody::add_figures(extras);
+  if (!cut_points_) return;
+  extras["cut_cells_by_parts"] = static_cast<double>(cut_cells_);
+  extras["cut_cell_points"] = static_cast<double>(cut_points_->point_count());
+}
+
+void NodalBody::add_cut_cell_forces(const Vector& u, Vector& f) const {
+  if (!cut_points_) return;
+  const ShapeTable& table = cut_points_->shapes();
+  const Index count = cut_points_->point_count();
+  cut_stress_.assign(count, Mat3::Zero());
+#pragma omp parallel for schedule(static)
+  for (Index p = own_cut_points_.first; p < own_cut_points_.second; ++p)
+    cut_stress_[p] = cut_points_->weight(p) * law_.stress(deformation_gradient(table, p, u));
+  cut_points_->gather(cut_stress_, cut_force_);
+  f += cut_force_;
+}
+
+double NodalBody::cut_cell_energy(const Vector& u) const {
+  if (!cut_points_) return 0.0;
+  double energy = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : energy)
+  for (Index p = own_cut_points_.first; p < own_cut_points_.second; ++p)
+    energy += cut_points_->weight(p) * law_.energy(deformation_gradient(cut_points_->shapes(), p, u));
+  return energy;
+}
+
+std::vector<Vec3> NodalBody::cell_moments() const {
+  if (!rest_moments_.empty()) return rest_moments_;
+  const std::vector<Vec3>* split = domain_.split_second_moments();
+  return split ? *split : dual_cell_second_moments(domain_.nodes().cells);
+}
+
 void NodalBody::correct_test_gradients() {
   const int dim = domain_.dimension();
-  const VolumeTerms volume = volume_terms(domain_.at_nodes(), domain_.nodes().volume, node_count());
+  VolumeTerms volume = volume_terms(domain_.at_nodes(), point_volume_, node_count());
+  if (cut_points_) {  // the cells at a cut are integrated by their parts' points
+    const VolumeTerms parts = volume_terms(cut_points_->shapes(), cut_points_->weights(), node_count());
+    for (auto [sum, part] : {std::pair{&volume.gradient_sum, &parts.gradient_sum},
+                             std::pair{&volume.magnitude, &parts.magnitude}, std::pair{&volume.value_sum, &parts.value_sum}})
+      for (std::size_t k = 0; k < sum->size(); ++k) (*sum)[k] += (*part)[k];
+  }
   const std::vector<double>& boundary = domain_.boundary_terms();
   const ConstraintResidual plain = constraint_residual(boundary, volume, dim);
   if (!vci_) return record_constraint(plain, std::nullopt);
@@ -95,6 +168,15 @@ void NodalBody::share_nodes(RankShare share) {
   std::vector<char> reached(node_count(), 0);
   for (Index I = own_nodes_.first; I < own_nodes_.second; ++I)
     for (Index J : domain_.at_nodes().neighbours.of(I)) reached[J] = 1;
+  if (cut_points_) {
+    own_cut_points_ = even_part(cut_points_->point_count(), share.rank, share.count);
+    for (Index p = own_cut_points_.first; p < own_cut_points_.second; ++p)
+      for (Index J : cut_points_->shapes().neighbours.of(p)) reached[J] = 1;
+  }
+  // A growing cut's points move: whatever rank gets them, the rows they may reach.
+  domain_.visit_cut_cell_reach([&](std::span<const Index> nodes) {
+    for (Index J : nodes) reached[J] = 1;
+  });
   if (constraints_) {
     constraints_->share(share);
     constraints_->mark_reached(reached);
@@ -106,21 +188,32 @@ CutUpdate NodalBody::update_for_cuts(double t) {
   // Every rank brings the whole domain's shape functions up to t (the same
   // on each); the neighbour lists, hence each rank's touched rows, stay.
   CutUpdate update;
-  std::vector<Index> rows;
-  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows);
+  std::vector<Index> rows, resized;
+  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows, &resized);
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
   update.points = static_cast<Index>(rows.size());
+  for (Index I : resized) weigh_node(I);  // the cut moved volume (and mass) across it
+  if (domain_.cut_cell_points_grow()) {  // the cells at the cut changed: their points, and the nodes' weights
+    const std::vector<Index> reweighed = reintegrate_cut_cells();
+    resized.insert(resized.end(), reweighed.begin(), reweighed.end());
+  }
   if (stabilized_) {
+    // The pairs of a node whose volume changed scale with it: their rows too.
+    rows.insert(rows.end(), resized.begin(), resized.end());
+    std::sort(rows.begin(), rows.end());
+    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
     const Index count = static_cast<Index>(rows.size());
 #pragma omp parallel for schedule(dynamic, 64)
     for (Index r = 0; r < count; ++r)
-      pair_row(domain_.nodes(), domain_.at_nodes(), default_stabilization, law_.lame().mu, rows[r], pairs_);
+      pair_row(domain_.nodes(), domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, rows[r], pairs_);
   }
-  if (natural_)
+  if (natural_) {
     natural_->refresh(domain_.nodes(), scene_.discretization.meshless.basis, domain_.at_nodes(), rows,
                       domain_.enrichment());
-  if (domain_.boundary_loads_touch(changed)) {
+    if (!resized.empty()) natural_->set_moments(cell_moments());
+  }
+  if (!resized.empty() || domain_.boundary_loads_touch(changed)) {
     load_ = body_load_;
     domain_.add_boundary_loads(scene_, load_);
   }
@@ -193,7 +286,7 @@ void NodalBody::force_kernel(const Vector& u, Vector& f) const {
       double q[Dim][Dim], vp[Dim][Dim];
       for (int i = 0; i < Dim; ++i)
         for (int l = 0; l < Dim; ++l) {
-          q[i][l] = vp[i][l] = nodes.volume[I] * P(i, l);
+          q[i][l] = vp[i][l] = point_volume_[I] * P(i, l);
           if constexpr (Stabilized) {
             double hM = 0.0;
             for (int m = 0; m < Dim; ++m) hM += h[i][m] * pairs_.lever_moment[9 * I + 3 * m + l];
@@ -242,6 +335,7 @@ void NodalBody::internal_force_baseline(const Vector& u, Vector& f) const {
   KERF_CHECK(domain_.dimension() == 3, "internal: the baseline pass is the 3D one");
   nodal_force_3d(force_tables(), law_, u, f, scratch_, VectorUnit::baseline);
   if (natural_) natural_->add_forces(domain_.at_nodes(), own_nodes_, u, f);
+  add_cut_cell_forces(u, f);
 }
 
 std::size_t NodalBody::force_pass_bytes() const {
@@ -267,7 +361,7 @@ NodalForceTables NodalBody::force_tables() const {
   t.index = table.neighbours.index.data();
   t.slots = static_cast<Index>(table.neighbours.index.size());
   t.gradient = table.gradient.data();
-  t.volume = domain_.nodes().volume.data();
+  t.volume = point_volume_.data();
   t.position4 = aligned_32(position4_);
   if (stabilized_) {
     t.stiffness = pairs_.stiffness.data();
@@ -285,6 +379,7 @@ void NodalBody::internal_force(const Vector& u, Vector& f) const {
   else
     stabilized_ ? force_kernel<2, true>(u, f) : force_kernel<2, false>(u, f);
   if (natural_) natural_->add_forces(domain_.at_nodes(), own_nodes_, u, f);
+  add_cut_cell_forces(u, f);
   if (constraints_) constraints_->terms(u, &f);
 }
 
@@ -301,7 +396,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
 #pragma omp parallel for schedule(static) reduction(+ : material, stab)
   for (Index I = own_nodes_.first; I < own_nodes_.second; ++I) {
     const Mat3 F = deformation_gradient(table, I, u);
-    material += nodes.volume[I] * law_.energy(F);
+    material += point_volume_[I] * law_.energy(F);
     if (!stabilized_) continue;
     auto near = table.neighbours.of(I);
     for (std::size_t j = 0; j < near.size(); ++j) {
@@ -313,6 +408,7 @@ double NodalBody::energies(const Vector& u, double* stabilization) const {
     }
   }
   if (natural_) stab += natural_->energy(table, own_nodes_, u);
+  material += cut_cell_energy(u);
   if (stabilization) *stabilization = stab;
   return material + stab + (constraints_ ? constraints_->terms(u, nullptr) : 0.0);
 }
@@ -360,8 +456,12 @@ void NodalBody::assemble_tangent(const Vector& u, const BlockSink& sink, std::sp
     stabilization = [this](Index I, std::vector<double>& block) { natural_->add_block(domain_.at_nodes(), I, block); };
   if (schedule_.colours.empty())
     schedule_ = only_points(schedule_points(domain_.at_nodes(), domain_.nodes().positions), own_nodes_);
-  assemble_material_blocks(domain_.at_nodes(), schedule_, domain_.nodes().volume, law_, u, sink, stabilization,
-                           offsets);
+  assemble_material_blocks(domain_.at_nodes(), schedule_, point_volume_, law_, u, sink, stabilization, offsets);
+  if (cut_points_) {
+    if (cut_schedule_.colours.empty())
+      cut_schedule_ = only_points(cut_points_->schedule(), own_cut_points_);
+    assemble_material_blocks(cut_points_->shapes(), cut_schedule_, cut_points_->weights(), law_, u, sink);
+  }
   if (constraints_) constraints_->add_tangent(u, sink);
 }
 
@@ -377,6 +477,19 @@ void NodalBody::visit_couplings(const CouplingVisitor& visit) const {
   for (Index I = 0; I < node_count(); ++I) {
     neighbour_dofs(domain_.at_nodes(), I, dofs);
     visit(dofs);
+  }
+  if (domain_.cut_cell_points_grow()) {
+    domain_.visit_cut_cell_reach([&](std::span<const Index> nodes) {
+      dofs.clear();
+      for (Index J : nodes)
+        for (int i = 0; i < domain_.dimension(); ++i) dofs.push_back(domain_.dimension() * J + i);
+      visit(dofs);
+    });
+  } else {
+    for (Index p = 0; cut_points_ && p < cut_points_->point_count(); ++p) {
+      neighbour_dofs(cut_points_->shapes(), p, dofs);
+      visit(dofs);
+    }
   }
   if (constraints_) constraints_->visit_couplings(visit);
 }

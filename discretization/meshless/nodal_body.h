@@ -75,6 +75,10 @@ class NodalBody final : public MeshlessBody,
   /// where a changed support covers a boundary load, the load vector.
   CutUpdate update_for_cuts(double t) override;
 
+  /// With meshless.cut_cells: split, the cells at a cut integrated by their
+  /// parts: how many, and with how many points.
+  void add_figures(std::map<std::string, double>& extras) const override;
+
   /// Stabilisation energy alone (J), hourglass or NSNI: zero for affine displacement fields.
   double stabilization_energy(const Vector& u) const;
   /// f_int(u) by the baseline x86-64 form of the 3D pass (tests: it must
@@ -101,6 +105,16 @@ class NodalBody final : public MeshlessBody,
   void assemble_tangent(const Vector& u, const BlockSink& sink, std::span<const double> offsets) const;
 
   void share_nodes(RankShare share);
+  /// The cells at a cut integrated by their parts (MeshlessDomain::cut_cell_points), when there are any.
+  void integrate_cut_cells();
+  /// integrate_cut_cells() again (a cut grew); returns the nodes whose own point's weight changed.
+  std::vector<Index> reintegrate_cut_cells();
+  void add_cut_cell_forces(const Vector& u, Vector& f) const;
+  double cut_cell_energy(const Vector& u) const;
+  /// Node I's weight into body_load_ (its volume as it stands).
+  void weigh_node(Index I);
+  /// NSNI's moments: the cells' as the cuts split them.
+  std::vector<Vec3> cell_moments() const;
   /// VCI's correction for the shape functions as they stand, and the
   /// integration constraint's residual recorded.
   void correct_test_gradients();
@@ -119,6 +133,16 @@ class NodalBody final : public MeshlessBody,
   bool vci_;
   std::vector<double> test_offsets_;  // VCI's ghat - grad psi, dim per slot of at_nodes (empty without)
   std::unique_ptr<WeakBoundaryConditions> constraints_;  // null with essential: parameters
+  // The nodes' own points' weights: their volumes, less the parts of the
+  // cells at a cut that cut_points_ integrate (with their second moments).
+  std::vector<double> point_volume_;
+  std::vector<Vec3> rest_moments_;  // empty without cut_points_
+  std::unique_ptr<PointIntegration> cut_points_;  // null without cells at a cut to integrate
+  std::pair<Index, Index> own_cut_points_{0, 0};
+  Index cut_cells_ = 0;
+  mutable PointSchedule cut_schedule_;
+  mutable std::vector<Mat3> cut_stress_;
+  mutable Vector cut_force_;
 };
 
 }  // namespace kerf

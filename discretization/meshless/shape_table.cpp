@@ -179,15 +179,33 @@ void append_rows(ShapeTable& table, const ShapeTable& more) {
   append(table.weight_factor_gradient, more.weight_factor_gradient);
 }
 
-Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
-  const int dim = table.dimension;
+namespace {
+
+/// F at one point with the dimension fixed: plain scalar accumulators (an
+/// Eigen matrix updated in the loop waits on store-to-load forwarding).
+template <int Dim>
+Mat3 deformation_gradient_fixed(const ShapeTable& table, Index point, const Vector& u) {
   auto near = table.neighbours.of(point);
   const double* g = table.gradients_of(point);
+  const double* x = u.data();
+  double h[Dim][Dim] = {};
+  for (std::size_t k = 0; k < near.size(); ++k) {
+    const double* uk = x + Dim * near[k];
+    const double* gk = g + Dim * k;
+    for (int i = 0; i < Dim; ++i)
+      for (int l = 0; l < Dim; ++l) h[i][l] += uk[i] * gk[l];
+  }
   Mat3 F = Mat3::Identity();
-  for (std::size_t k = 0; k < near.size(); ++k)
-    for (int i = 0; i < dim; ++i)
-      for (int l = 0; l < dim; ++l) F(i, l) += u[dim * near[k] + i] * g[dim * k + l];
+  for (int i = 0; i < Dim; ++i)
+    for (int l = 0; l < Dim; ++l) F(i, l) += h[i][l];
   return F;
+}
+
+}  // namespace
+
+Mat3 deformation_gradient(const ShapeTable& table, Index point, const Vector& u) {
+  return table.dimension == 3 ? deformation_gradient_fixed<3>(table, point, u)
+                              : deformation_gradient_fixed<2>(table, point, u);
 }
 
 Vec3 interpolated_displacement(const ShapeTable& table, Index point, const Vector& u) {

@@ -4,8 +4,10 @@
 // planes), one strip triangle per time. Each iteration adds one triangle and
 // times the body's update: the Enrichment Grid rebuilt in the cut's common
 // frame, the nodes whose weight changed found, their shape functions and
-// stabilisation pairs recomputed. Arguments: the grid lookup (0 exact,
-// 1 interpolated), the lattice spacing in tenths of the node spacing.
+// stabilisation pairs recomputed, and (meshless.cut_cells: split) the cells
+// the new piece crosses split and the points of the cells at the cut built
+// again. Arguments: the grid lookup (0 exact, 1 interpolated), the lattice
+// spacing in tenths of the node spacing, cut_cells split (1) or whole (0).
 // FemRemeshUpdate times the `fem: remesh` baseline of the same update on the
 // matching tet4 mesh (element size = node spacing): gmsh meshes the block with
 // the strip so far embedded and opens it (Crack plugin), the FEM body is
@@ -35,7 +37,7 @@ constexpr int blade_positions = 23;
 
 /// The block and its blade; with `triangles` > 0, FEM (tet4) with the first
 /// `triangles` of the strip present from the start.
-Scene cut_block(bool interpolated, double grid_spacing, int triangles = 0) {
+Scene cut_block(bool interpolated, double grid_spacing, int triangles = 0, bool split_cells = true) {
   std::ostringstream strip, times;
   const int vertices = triangles > 0 ? triangles + 2 : 2 * blade_positions;
   for (int v = 0; v < vertices; ++v) {
@@ -52,7 +54,8 @@ domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}
 material: {young: 3000, poisson: 0.3, density: 1000}
 discretization: {method: )"
        << (triangles > 0 ? "fem" : "nodal") << ", fem: {element: tet4, size: " << node_spacing
-       << "}, meshless: {spacing: " << node_spacing << R"(, support: 2.3}}
+       << "}, meshless: {spacing: " << node_spacing << ", cut_cells: " << (split_cells ? "split" : "whole")
+       << R"(, support: 2.3}}
 boundary:
   - select: {plane: {axis: z, at: 0.0}}
     fix: [x, y, z]
@@ -69,7 +72,7 @@ output: {vtk: false}
 }
 
 void BM_CutUpdate(benchmark::State& state) {
-  const Scene scene = cut_block(state.range(0) != 0, 0.1 * state.range(1) * node_spacing);
+  const Scene scene = cut_block(state.range(0) != 0, 0.1 * state.range(1) * node_spacing, 0, state.range(2) != 0);
   RunReport report;
   std::unique_ptr<DiscreteBody> body;
   CutsInShapeFunctions* cuts = nullptr;
@@ -165,7 +168,16 @@ void BM_FemRemeshUpdate(benchmark::State& state) {
 
 BENCHMARK(BM_FemRemeshUpdate)->Iterations(44)->Repetitions(1)->Unit(benchmark::kMillisecond);  // 44 remeshes: about a minute
 
-BENCHMARK(BM_CutUpdate)->Args({0, 5})->Args({1, 5})->Args({0, 10})->Args({1, 10})->Iterations(88)->Unit(benchmark::kMillisecond);
+// The third argument: meshless.cut_cells split (1, the default) or whole (0, the paper's).
+BENCHMARK(BM_CutUpdate)
+    ->Args({0, 5, 1})
+    ->Args({1, 5, 1})
+    ->Args({0, 10, 1})
+    ->Args({1, 10, 1})
+    ->Args({0, 5, 0})
+    ->Args({1, 5, 0})
+    ->Iterations(88)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CutUpdateFloor)->Arg(436)->Unit(benchmark::kMillisecond);
 
 const bool paired = (bench::pair_with_floor("BM_CutUpdate/1/5", "BM_CutUpdateFloor/436",

@@ -97,6 +97,42 @@ TEST(SceneReader, StabilizationTakesItsOldBooleansAndItsNames) {
   expect_contains(m, "nsni");
 }
 
+TEST(SceneReader, CutCellsTakeTheirNamesAndAutoResolvesByGrowth) {
+  const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
+  auto read = [&](const std::string& value) {
+    return testing::scene_from_text(box + "discretization: {method: nodal, meshless: {cut_cells: " + value + "}}\n")
+        .discretization.meshless.cut_cells;
+  };
+  EXPECT_EQ(testing::scene_from_text(box).discretization.meshless.cut_cells, CutCells::automatic);
+  EXPECT_EQ(read("auto"), CutCells::automatic);
+  EXPECT_EQ(read("whole"), CutCells::whole);
+  EXPECT_EQ(read("split"), CutCells::split);
+  // auto: split for a cut there from the start, whole for one that grows
+  const std::string cut = "cuts: [{strip: [[0.5,-1,2], [0.5,-1,0.5], [0.5,2,2], [0.5,2,0.5]], times: [0, 0, T, T]}]\n";
+  auto resolved = [&](const std::string& times, const std::string& value) {
+    std::string text = box + "discretization: {method: nodal, meshless: {cut_cells: " + value + "}}\n" + cut;
+    text.replace(text.find("T, T"), 4, times + ", " + times);
+    return cut_cells_of(testing::scene_from_text(text));
+  };
+  EXPECT_EQ(resolved("0", "auto"), CutCells::split);
+  EXPECT_EQ(resolved("1", "auto"), CutCells::whole);
+  EXPECT_EQ(resolved("1", "split"), CutCells::split);
+  EXPECT_EQ(resolved("0", "whole"), CutCells::whole);
+  // split is refused where it is not built (EFG, smoothed gradients, VCI), naming the key
+  for (const std::string& other : {"method: efg, meshless: {cut_cells: split}",
+                                   "method: nodal, meshless: {cut_cells: split, gradient: smoothed}",
+                                   "method: nodal, meshless: {cut_cells: split, vci: linear}"}) {
+    const std::string why = testing::scene_refusal(box + "discretization: {" + other + "}\nsolve: {analysis: static}\n");
+    expect_contains(why, "discretization.meshless.cut_cells");
+    expect_contains(why, "'split'");
+  }
+  const std::string m = testing::scene_refusal(box + "discretization: {meshless: {cut_cells: halves}}\n");
+  expect_contains(m, "test.yaml:2:");
+  expect_contains(m, "cut_cells");
+  expect_contains(m, "'halves'");
+  expect_contains(m, "whole");
+}
+
 TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
   std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
   expect_contains(m, "test.yaml:3:");
@@ -238,6 +274,7 @@ TEST(SceneReader, ResolvedMeshlessScenesReadBackAsTheyWere) {
       const auto again = scene_to_json(testing::scene_from_text(j.dump()));
       EXPECT_EQ(again, j) << method << " " << analysis;
       EXPECT_EQ(j["discretization"]["meshless"]["vci"], "none");
+      EXPECT_EQ(j["discretization"]["meshless"]["cut_cells"], std::string(method) == "nodal" ? "split" : "whole");
       EXPECT_EQ(j["discretization"]["meshless"]["essential"], std::string(method) == "efg" ? "nitsche" : "parameters");
     }
 }
