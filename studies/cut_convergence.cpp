@@ -19,13 +19,16 @@
 //    Enrichment Grid, exact lookup), `fem: remesh` tet4, `fem: remove` tet4;
 //    and EFG with 4 Gauss points a direction (its quadrature converged; four
 //    levels, full mode only).
+//    Direct nodal integration runs twice: as kerf does by default, the cells
+//    at the cut split (meshless.cut_cells: split), and as the paper does, the
+//    nodes' whole cells (`nodal_direct_whole`, cut_cells: whole).
 // 3. The diagnosis of direct nodal integration near a cut: at 2 mm the
 //    lattice has nodes on the cut's plane and on its front. The blade's plane
 //    (along x) and front (up) are moved off them by 0.01 to 1 mm, together
 //    and one at a time, and each meshless method is compared with tet10 at
 //    2 mm on the same moved cut. EFG uses the same nodes and shape functions:
 //    what differs between it and nodal integration is the integration.
-// Quick mode runs 3 mm only, and direct nodal and tet10 at 2 mm with the cut
+// Quick mode runs 3 mm only, and direct nodal (both) and tet10 at 2 mm with the cut
 // on the nodes and 0.1 mm off them; it holds each method's error to at most
 // what the full study measured at 3 mm (the constants below, from
 // results/cut_convergence/cut_convergence.json): one-sided, an improvement passes.
@@ -58,12 +61,14 @@ struct QuickBound {
 };
 constexpr QuickBound measured_at_3mm[] = {
     {"fem_tet10_remesh", -4.40, -6.00}, {"fem_tet4_remesh", -27.62, -34.44}, {"fem_tet4_remove", 2.00, 8.77},
-    {"efg", -3.14, -3.89},             {"nodal_smoothed", 41.97, 57.78},   {"nodal_direct", 47.54, 69.25},
+    {"efg", -3.14, -3.89},             {"nodal_smoothed", 41.97, 57.78},   {"nodal_direct", -7.89, -8.91},
+    {"nodal_direct_whole", 47.54, 69.25},
 };
 constexpr double quick_margin = 0.5;  // percentage points: the same scene, summed in another order
 
 struct Method {
   std::string label, method, element, fem, gradient;  // fem: remesh | remove (FEM only)
+  std::string cut_cells;                               // nodal: whole (the paper's) | split (empty: the default)
   std::vector<double> spacings;                        // m, coarse to fine (full mode)
   int quadrature_order = 0;                            // efg: Gauss points a direction (0: the default)
 };
@@ -85,6 +90,7 @@ std::string scene_text(const Method& m, double h, Shift shift) {
     << "  method: " << m.method << "\n"
     << "  fem: {element: " << (m.element.empty() ? "tet4" : m.element) << ", size: " << h << "}\n"
     << "  meshless: {spacing: " << h << (m.gradient.empty() ? "" : ", gradient: " + m.gradient)
+    << (m.cut_cells.empty() ? "" : ", cut_cells: " + m.cut_cells)
     << (m.quadrature_order ? ", quadrature: {order: " + std::to_string(m.quadrature_order) + "}" : "") << "}\n"
     << "boundary:\n"
     << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
@@ -192,11 +198,17 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
                     std::to_string(sag) + " % against " + std::to_string(q.sag_error) + ", opening " +
                     std::to_string(opening) + " % against " + std::to_string(q.opening_error) + ")");
   }
-  const double aligned = number(points, "nodal_direct", 0.002, {}, "sweep_sag_error_percent");
-  const double off = number(points, "nodal_direct", 0.002, {1e-4, 1e-4}, "sweep_sag_error_percent");
-  check_claim(aligned - off > 20.0, "direct nodal integration with nodes on the cut's plane and front is more than 20 "
-                                    "points softer than with the cut 0.1 mm off them (" +
+  const double aligned = number(points, "nodal_direct_whole", 0.002, {}, "sweep_sag_error_percent");
+  const double off = number(points, "nodal_direct_whole", 0.002, {1e-4, 1e-4}, "sweep_sag_error_percent");
+  check_claim(aligned - off > 20.0, "the paper's direct nodal integration (cells whole) with nodes on the cut's plane "
+                                    "and front is more than 20 points softer than with the cut 0.1 mm off them (" +
                                         std::to_string(aligned) + " % against " + std::to_string(off) + " %)");
+  const double split_aligned = number(points, "nodal_direct", 0.002, {}, "sweep_sag_error_percent");
+  const double split_off = number(points, "nodal_direct", 0.002, {1e-4, 1e-4}, "sweep_sag_error_percent");
+  check_claim(std::abs(split_aligned - split_off) < 0.25 * (aligned - off),
+              "cells split at the cut take most of that swing away: nodes on the cut's plane and front move direct "
+              "nodal integration's sag by under a quarter as much (" + std::to_string(split_aligned) + " % against " +
+                  std::to_string(split_off) + " %)");
   if (quick) return;
   const Json& reference = result["reference"];
   const double ref_sag = reference["sag_m"], ref_opening = reference["opening_m"];
@@ -235,10 +247,13 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
       }
     return high - low;
   };
-  check_claim(spread("nodal_direct") > 3.0 * spread("efg"),
-              "where the cut lies between the nodes moves direct nodal integration's answer more than three times as "
-              "much as EFG's on the same nodes (" + std::to_string(spread("nodal_direct")) + " against " +
+  check_claim(spread("nodal_direct_whole") > 3.0 * spread("efg"),
+              "where the cut lies between the nodes moves the paper's direct nodal integration's answer more than three "
+              "times as much as EFG's on the same nodes (" + std::to_string(spread("nodal_direct_whole")) + " against " +
                   std::to_string(spread("efg")) + " points)");
+  check_claim(spread("nodal_direct") < 0.5 * spread("nodal_direct_whole"),
+              "cells split at the cut halve that spread at least (" + std::to_string(spread("nodal_direct")) +
+                  " against " + std::to_string(spread("nodal_direct_whole")) + " points)");
   check_claim(std::abs(ref_sag - reference_sag) < 1e-3 * reference_sag &&
                   std::abs(ref_opening - reference_opening) < 1e-3 * reference_opening,
               "the reference equals the one quick mode uses (update reference_sag and reference_opening)");
@@ -249,15 +264,17 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
 std::vector<Method> study_methods() {
   const std::vector<double> meshless{0.003, 0.0025, 0.002, 0.0015, 0.0012};
   return {
-      {"fem_tet10_remesh", "fem", "tet10", "remesh", "", fem_sizes},  // the reference
-      {"fem_tet4_remesh", "fem", "tet4", "remesh", "", fem_sizes},
-      {"fem_tet4_remove", "fem", "tet4", "remove", "", fem_sizes},
-      {"efg", "efg", "", "", "", meshless},
+      {"fem_tet10_remesh", "fem", "tet10", "remesh", "", "", fem_sizes},  // the reference
+      {"fem_tet4_remesh", "fem", "tet4", "remesh", "", "", fem_sizes},
+      {"fem_tet4_remove", "fem", "tet4", "remove", "", "", fem_sizes},
+      {"efg", "efg", "", "", "", "", meshless},
       // EFG with its quadrature converged (4 points a direction: 8 times the
       // points): what its shape functions give without the 2-point rule's error.
-      {"efg_order4", "efg", "", "", "", {0.003, 0.0025, 0.002, 0.0015}, 4},
-      {"nodal_smoothed", "nodal", "", "", "smoothed", meshless},
-      {"nodal_direct", "nodal", "", "", "direct", meshless},
+      {"efg_order4", "efg", "", "", "", "", {0.003, 0.0025, 0.002, 0.0015}, 4},
+      {"nodal_smoothed", "nodal", "", "", "smoothed", "", meshless},
+      {"nodal_direct", "nodal", "", "", "direct", "", meshless},
+      // The paper's nodal integration: every node's whole dual cell at its node, across the cut too.
+      {"nodal_direct_whole", "nodal", "", "", "direct", "whole", meshless},
   };
 }
 
@@ -288,9 +305,10 @@ std::vector<PlannedRun> plan_of(const std::vector<Method>& methods, bool quick) 
       quick ? std::vector<Shift>{{}, {1e-4, 1e-4}}
             : std::vector<Shift>{{}, {1e-5, 1e-5}, {1e-4, 1e-4}, {3e-4, 3e-4}, {5e-4, 5e-4}, {1e-3, 1e-3},
                                  {1e-4, 0.0}, {0.0, 1e-4}};
-  const std::vector<std::string> swept = quick ? std::vector<std::string>{"fem_tet10_remesh", "nodal_direct"}
-                                               : std::vector<std::string>{"fem_tet10_remesh", "nodal_direct",
-                                                                          "nodal_smoothed", "efg"};
+  const std::vector<std::string> swept =
+      quick ? std::vector<std::string>{"fem_tet10_remesh", "nodal_direct", "nodal_direct_whole"}
+            : std::vector<std::string>{"fem_tet10_remesh", "nodal_direct", "nodal_direct_whole", "nodal_smoothed",
+                                       "efg"};
   std::vector<PlannedRun> plan;
   for (const Method& m : methods)
     for (double h : spacings_of(m, quick)) plan.push_back({&m, h, Shift{}});
