@@ -2,6 +2,8 @@
 
 #include <cholmod.h>
 
+#include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "core/thread_scope.h"
@@ -61,7 +63,7 @@ class CholmodSolver final : public LinearSolver {
       return status;
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
-    return LinearSolverStatus::success();
+    return numerically_singular(A);
   }
 
   LinearSolverStatus solve(const Vector& b, Vector& x) override {
@@ -99,6 +101,36 @@ class CholmodSolver final : public LinearSolver {
     s.sorted = 1;
     s.packed = 1;
     return s;
+  }
+  /// A factor whose smallest pivot is below 1e-20 of its largest: the matrix
+  /// is positive definite only by round-off (a piece of the body held by
+  /// nothing but a cut's smooth front), and a solve would answer displacements
+  /// of 1e27 m. Refused like a failed pivot, naming the row.
+  LinearSolverStatus numerically_singular(const SparseMatrix& A) const {
+    if (!factor_->is_super) return LinearSolverStatus::success();
+    const auto* super = static_cast<const int*>(factor_->super);
+    const auto* pi = static_cast<const int*>(factor_->pi);
+    const auto* px = static_cast<const int*>(factor_->px);
+    const auto* x = static_cast<const double*>(factor_->x);
+    double smallest = std::numeric_limits<double>::infinity(), largest = 0.0;
+    Index column = -1;
+    for (std::size_t s = 0; s < factor_->nsuper; ++s) {
+      const int rows = pi[s + 1] - pi[s];
+      for (int j = 0; j < super[s + 1] - super[s]; ++j) {
+        const double pivot = x[px[s] + j + static_cast<std::size_t>(j) * rows];  // L's diagonal: sqrt(D)
+        largest = std::max(largest, pivot * pivot);
+        if (pivot * pivot < smallest) smallest = pivot * pivot, column = super[s] + j;
+      }
+    }
+    if (column < 0 || smallest >= 1e-20 * largest) return LinearSolverStatus::success();
+    const auto* permutation = static_cast<const int*>(factor_->Perm);
+    const Index row = permutation && column < A.rows() ? permutation[column] : column;
+    std::ostringstream why;
+    why << "cholmod: the matrix is numerically singular (pivot " << column << " of " << A.rows() << ", at row "
+        << row << ", is " << smallest / largest << " of the largest)";
+    LinearSolverStatus status = LinearSolverStatus::failure(why.str());
+    status.failed_row = row;
+    return status;
   }
   LinearSolverStatus failure(const char* what) const {
     std::ostringstream why;

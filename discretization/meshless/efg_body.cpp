@@ -185,4 +185,10 @@ Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {
   return constraints_ ? constraints_->reaction(u, selection) : Vec3::Zero();
 }
 
+void EfgBody::add_figures(std::map<std::string, double>& extras) const {
+  MeshlessBody::add_figures(extras);
+  if (domain_.enrichment())
+    extras["mls_reduced_basis_points"] = static_cast<double>(points_.shapes().reduced_basis_points());
+}
+
 }  // namespace kerf

@@ -52,6 +52,9 @@ class EfgBody final : public MeshlessBody,
   /// constraints' boundary points' and, where they changed, the loads.
   CutUpdate update_for_cuts(double t) override;
 
+  /// The meshless figures, and the Gauss points a cut left a reduced basis.
+  void add_figures(std::map<std::string, double>& extras) const override;
+
  private:
   /// Gravity through the Gauss points' shape functions, and the boundary loads, into load_.
   void assemble_loads();

@@ -47,6 +47,7 @@ class MeshlessBody : public DiscreteBody,
     if (domain_.enrichment()) {
       extras["mls_condition_near_cut_max"] = c.near_cut_max;
       extras["mls_condition_near_tip_max"] = c.near_tip_max;
+      extras["mls_reduced_basis_nodes"] = static_cast<double>(c.reduced_basis);
     }
     // The integration constraint, tested as the forces are: the largest
     // residual over set-up and, with VCI, every cut growth.
@@ -67,6 +68,10 @@ class MeshlessBody : public DiscreteBody,
     const Index node = dof / dofs_per_node();
     std::string out = DiscreteBody::describe_dof(dof) + ", MLS condition number " +
                       std::to_string(domain_.at_nodes().condition[node]);
+    const std::vector<std::int8_t>& reduced = domain_.at_nodes().basis_directions;
+    if (!reduced.empty() && reduced[node] >= 0)
+      out += "; a cut leaves it " + std::to_string(reduced[node]) +
+             " direction(s) of nodes on its side (its basis reduced to them: a piece the cut frees is held by nothing)";
     if (const WeakBoundaryConditions* weak = weak_conditions()) out += weak->describe_node(node);
     return out;
   }

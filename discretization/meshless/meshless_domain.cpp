@@ -411,6 +411,7 @@ MomentConditioning MeshlessDomain::conditioning() const {
   std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
   c.median = sorted[sorted.size() / 2];
   c.max = *std::max_element(k.begin(), k.end());
+  c.reduced_basis = at_nodes_.reduced_basis_points();
   const CutWeights* cuts = enrichment();
   if (!cuts) return c;
   // The ends of each cut as it stands: a polyline's two end vertices, a

@@ -40,6 +40,7 @@ struct MomentConditioning {
   double median = 0.0, max = 0.0;  // over all nodes
   double near_cut_max = 0.0;       // over the nodes whose weight a cut enriches
   double near_tip_max = 0.0;       // over the nodes whose support holds an end of a cut's front
+  Index reduced_basis = 0;         // nodes left too few neighbours on their side of a cut (mls_spanned_linear)
 };
 
 class MeshlessDomain {

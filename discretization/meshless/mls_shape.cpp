@@ -61,27 +61,21 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
 
 namespace {
 
-/// The MLS shape functions with an m-term basis known at compile time (m = M):
-/// every moment matrix and solve is fixed-size, nothing is allocated but `out`.
-template <int M>
-bool mls_fixed(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> w,
-               double h, bool hessians, MlsShape& out) {
+/// The MLS shape functions for an m-term basis p (m = M when known at compile
+/// time, so every moment matrix and solve is fixed-size): p_of(I) is p at
+/// node I, p0, dp[k] and d2p[k][l] are p and its derivatives at x. Nothing is
+/// allocated but `out`.
+template <int M, class BasisAtNode>
+bool mls_with_basis(int dim, int m, std::size_t n, BasisAtNode p_of, const Eigen::Matrix<double, M, 1>& p0,
+                    const Eigen::Matrix<double, M, 1> (&dp)[3], const Eigen::Matrix<double, M, 1> (&d2p)[3][3],
+                    std::span<const WeightValue> w, bool hessians, MlsShape& out) {
   using Column = Eigen::Matrix<double, M, 1>;
   using Square = Eigen::Matrix<double, M, M>;
-  const std::size_t n = nodes.size();
-  constexpr int m = M;
-  out.value.assign(n, 0.0);
-  out.gradient.assign(n, Vec3::Zero());
-  out.hessian.assign(hessians ? n : 0, Mat3::Zero());
-  out.condition = std::numeric_limits<double>::infinity();
-  if (n == 0) return false;
-  // The basis is centred at x and scaled by h, the largest support: A stays O(1).
-  auto p_of = [&](std::size_t I) { return basis_at<M>(dim, basis, (nodes[I] - x) / h); };
-  Square A = Square::Zero();
+  Square A = Square::Zero(m, m);
   Square dA[3], d2A[3][3];
   for (int k = 0; k < dim; ++k) {
-    dA[k] = Square::Zero();
-    for (int l = 0; l < dim; ++l) d2A[k][l] = Square::Zero();
+    dA[k] = Square::Zero(m, m);
+    for (int l = 0; l < dim; ++l) d2A[k][l] = Square::Zero(m, m);
   }
   for (std::size_t I = 0; I < n; ++I) {
     const Column p = p_of(I);
@@ -100,24 +94,6 @@ bool mls_fixed(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nod
   auto solve = [&](const Column& b) -> Column {
     return eigen.eigenvectors() * (lambda.cwiseInverse().asDiagonal() * (eigen.eigenvectors().transpose() * b));
   };
-  // Derivatives of p at the evaluation point (xi = 0): dp/dx_k = e_{1+k} / h;
-  // d2p/dx_k dx_l is 1/h^2 (2 on the diagonal) on the quadratic term xi_k xi_l.
-  const Column p0 = basis_at<M>(dim, basis, Vec3::Zero());
-  Column dp[3], d2p[3][3];
-  for (int k = 0; k < dim; ++k) {
-    dp[k] = Column::Zero();
-    dp[k][1 + k] = 1.0 / h;
-    for (int l = 0; l < dim; ++l) d2p[k][l] = Column::Zero();
-  }
-  if (basis == MlsBasis::quadratic) {
-    int term = 1 + dim;
-    for (int i = 0; i < dim; ++i)
-      for (int j = i; j < dim; ++j, ++term) {
-        double value = (i == j ? 2.0 : 1.0) / (h * h);
-        d2p[i][j][term] = value;
-        d2p[j][i][term] = value;
-      }
-  }
   // gamma = A^-1 p(x) and its derivatives (Belytschko et al.).
   const Column gamma = solve(p0);
   Column dgamma[3], d2gamma[3][3];
@@ -144,7 +120,98 @@ bool mls_fixed(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nod
   return true;
 }
 
+/// Clears `out` for n nodes: zero values and derivatives, infinite condition.
+void reset_shape(std::size_t n, bool hessians, MlsShape& out) {
+  out.value.assign(n, 0.0);
+  out.gradient.assign(n, Vec3::Zero());
+  out.hessian.assign(hessians ? n : 0, Mat3::Zero());
+  out.condition = std::numeric_limits<double>::infinity();
+  out.spanned_directions = -1;
+}
+
+/// The full basis (linear or quadratic, M terms), centred at x and scaled by
+/// h, the largest support, so that A stays O(1).
+template <int M>
+bool mls_fixed(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> w,
+               double h, bool hessians, MlsShape& out) {
+  using Column = Eigen::Matrix<double, M, 1>;
+  const std::size_t n = nodes.size();
+  reset_shape(n, hessians, out);
+  if (n == 0) return false;
+  auto p_of = [&](std::size_t I) { return basis_at<M>(dim, basis, (nodes[I] - x) / h); };
+  // Derivatives of p at the evaluation point (xi = 0): dp/dx_k = e_{1+k} / h;
+  // d2p/dx_k dx_l is 1/h^2 (2 on the diagonal) on the quadratic term xi_k xi_l.
+  const Column p0 = basis_at<M>(dim, basis, Vec3::Zero());
+  Column dp[3], d2p[3][3];
+  for (int k = 0; k < 3; ++k) {
+    dp[k] = Column::Zero();
+    if (k < dim) dp[k][1 + k] = 1.0 / h;
+    for (int l = 0; l < 3; ++l) d2p[k][l] = Column::Zero();
+  }
+  if (basis == MlsBasis::quadratic) {
+    int term = 1 + dim;
+    for (int i = 0; i < dim; ++i)
+      for (int j = i; j < dim; ++j, ++term) {
+        double value = (i == j ? 2.0 : 1.0) / (h * h);
+        d2p[i][j][term] = value;
+        d2p[j][i][term] = value;
+      }
+  }
+  return mls_with_basis<M>(dim, M, n, p_of, p0, dp, d2p, w, hessians, out);
+}
+
 }  // namespace
+
+NodeSpread node_spread(int dim, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> w,
+                       double h) {
+  NodeSpread spread;
+  double total = 0.0;
+  Vec3 mean = Vec3::Zero();
+  for (std::size_t I = 0; I < nodes.size(); ++I) {
+    total += w[I].value;
+    mean += w[I].value * (nodes[I] - x) / h;
+  }
+  if (!(total > 0.0)) return spread;
+  mean /= total;
+  Mat3 covariance = Mat3::Zero();
+  for (std::size_t I = 0; I < nodes.size(); ++I) {
+    const Vec3 d = (nodes[I] - x) / h - mean;
+    covariance += w[I].value / total * d * d.transpose();
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance.topLeftCorner(dim, dim));
+  const double largest = eigen.eigenvalues()[dim - 1];
+  spread.weighted = true;
+  for (int k = dim - 1; k >= 0; --k)
+    if (largest > 1e-12 && eigen.eigenvalues()[k] >= NodeSpread::thinnest * largest)
+      spread.axes.col(spread.directions++).head(dim) = eigen.eigenvectors().col(k);
+  return spread;
+}
+
+bool mls_spanned_linear(int dim, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> w,
+                        const NodeSpread& spread, double h, bool hessians, MlsShape& out) {
+  using Column = Eigen::VectorXd;
+  const std::size_t n = nodes.size();
+  reset_shape(n, hessians, out);
+  if (!spread.weighted) return false;
+  const int r = spread.directions, m = 1 + r;
+  const Eigen::MatrixXd T = spread.axes.topLeftCorner(dim, r);
+  auto p_of = [&](std::size_t I) {
+    Column p(m);
+    p[0] = 1.0;
+    p.tail(r) = T.transpose() * ((nodes[I] - x) / h).head(dim);
+    return p;
+  };
+  Column p0 = Column::Zero(m), dp[3], d2p[3][3];
+  p0[0] = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    dp[k] = Column::Zero(m);
+    if (k < dim) dp[k].tail(r) = T.row(k).transpose() / h;
+    for (int l = 0; l < 3; ++l) d2p[k][l] = Column::Zero(m);
+  }
+  if (!mls_with_basis<Eigen::Dynamic>(dim, m, n, p_of, p0, dp, d2p, w, hessians, out)) return false;
+  out.spanned_directions = r;
+  return true;
+}
 
 bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
                          std::span<const WeightValue> w, double h, bool hessians, MlsShape& out) {

@@ -34,6 +34,7 @@ struct MlsShape {
   std::vector<Vec3> gradient;   // n (1/m)
   std::vector<Mat3> hessian;    // n (1/m^2), empty unless asked
   double condition = 0.0;       // of the scaled moment matrix
+  int spanned_directions = -1;  // -1: the full basis; else mls_spanned_linear's r
 };
 
 /// MLS shape functions at x of `nodes` with support radii `radii` (those whose
@@ -46,5 +47,29 @@ bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const
 /// w_I g_I); `scale` (m) scales the basis, the largest support radius.
 bool mls_shape_functions(int dim, MlsBasis basis, const Vec3& x, std::span<const Vec3> nodes,
                          std::span<const WeightValue> weights, double scale, bool hessians, MlsShape& out);
+
+/// How the nodes that weigh on x spread: the eigenvectors of their weighted
+/// covariance whose variance is at least `thinnest` of the largest (axes'
+/// first `directions` columns). A cut that leaves a point few nodes on its
+/// side (a flap one node layer thick, a node alone in a corner, a shaved cap
+/// of a curved body) leaves them thin along some direction: a full basis
+/// there is singular, or so ill-conditioned that its gradients (and the
+/// explicit step) grow with one over that thinness.
+struct NodeSpread {
+  static constexpr double thinnest = 1e-2;  // a standard deviation a tenth of the largest
+  bool weighted = false;                    // some weight is positive
+  int directions = 0;
+  Mat3 axes = Mat3::Zero();
+};
+NodeSpread node_spread(int dim, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> weights,
+                       double scale);
+
+/// The linear basis over the directions `spread` keeps, 0 <= r <= dim: it
+/// reproduces constants, and linear fields along those directions; across
+/// them the gradient is zero. r = 0 is Shepard's functions (a node alone:
+/// psi = 1, its own translation). out.spanned_directions = r. False only
+/// when no weight is positive.
+bool mls_spanned_linear(int dim, const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightValue> weights,
+                        const NodeSpread& spread, double scale, bool hessians, MlsShape& out);
 
 }  // namespace kerf

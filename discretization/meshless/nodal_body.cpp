@@ -28,9 +28,11 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, std::span<const dou
   }
   std::fill_n(t.lever_sum.begin() + 3 * I, 3, 0.0);
   std::fill_n(t.lever_moment.begin() + 9 * I, 9, 0.0);
+  // A node a cut left alone on its side has no pairs (and no normaliser).
+  const double scale = normaliser > 0.0 ? c * mu * volume[I] / normaliser : 0.0;
   for (std::size_t j = 0; j < near.size(); ++j) {
     const Index s = s0 + static_cast<Index>(j);
-    const double k = t.stiffness[s] *= c * mu * volume[I] / normaliser;
+    const double k = t.stiffness[s] *= scale;
     const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
     for (int i = 0; i < dim; ++i) {
       t.lever_sum[3 * I + i] += k * X[i];
@@ -115,6 +117,7 @@ void NodalBody::add_figures(std::map<std::string, double>& extras) const {
   if (!cut_points_) return;
   extras["cut_cells_by_parts"] = static_cast<double>(cut_cells_);
   extras["cut_cell_points"] = static_cast<double>(cut_points_->point_count());
+  extras["cut_cell_points_reduced_basis"] = static_cast<double>(cut_points_->shapes().reduced_basis_points());
 }
 
 void NodalBody::add_cut_cell_forces(const Vector& u, Vector& f) const {

@@ -38,6 +38,7 @@ Filled fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3&
   if (!t.weight_factor_gradient.empty())
     for (std::size_t k = 0; k < near.size(); ++k) t.weight_factor_gradient[s + k] = scratch.factors()[k].gradient;
   if (!ok) return Filled::singular;
+  if (!t.basis_directions.empty()) t.basis_directions[p] = static_cast<std::int8_t>(scratch.shape.spanned_directions);
   for (std::size_t k = 0; k < near.size(); ++k) {
     t.value[s + k] = scratch.shape.value[k];
     for (int i = 0; i < dim; ++i) t.gradient[dim * (s + k) + i] = scratch.shape.gradient[k][i];
@@ -122,7 +123,16 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
     }
     w_.push_back(wI);
   }
-  return mls_shape_functions(nodes.dimension, basis, point, x_, w_, scale, hessians, shape);
+  const int dim = nodes.dimension;
+  const bool cut_hides_nodes =
+      std::any_of(weight_factor.begin(), weight_factor.end(), [](double g) { return g < 1.0; });
+  // Without a cut a singular matrix is the support's fault, and is refused.
+  if (!cut_hides_nodes) return mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape);
+  // A cut can leave the point's side nodes thin along some direction: the
+  // linear fields they still tell apart are kept, and no steep gradient.
+  const NodeSpread spread = node_spread(dim, point, x_, w_, scale);
+  if (spread.directions == dim && mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape)) return true;
+  return mls_spanned_linear(dim, point, x_, w_, spread, scale, hessians, shape);
 }
 
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
@@ -137,6 +147,7 @@ ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
   t.condition.assign(P, 0.0);
   if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
+  if (enrichment) t.basis_directions.assign(P, -1);
   if (enrichment && keep_factor_gradients) t.weight_factor_gradient.assign(t.neighbours.index.size(), Vec3::Zero());
   std::vector<char> filled;
   fill_rows(t, nodes, basis, points, P, [](Index i) { return i; }, enrichment, false, filled, what, context, remedy,
@@ -153,6 +164,7 @@ std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, M
     table.weight_factor.assign(slots, 1.0);
     table.weight_factor_gradient.assign(slots, Vec3::Zero());
   }
+  if (table.basis_directions.empty()) table.basis_directions.assign(table.point_count(), -1);
   KERF_CHECK(table.weight_factor_gradient.size() == slots,
              "internal: a table refreshed for a growing cut must keep its factors' gradients (keep_factor_gradients)");
   std::vector<char> filled;
@@ -177,6 +189,12 @@ void append_rows(ShapeTable& table, const ShapeTable& more) {
   append(table.condition, more.condition);
   append(table.weight_factor, more.weight_factor);
   append(table.weight_factor_gradient, more.weight_factor_gradient);
+  append(table.basis_directions, more.basis_directions);
+}
+
+Index ShapeTable::reduced_basis_points() const {
+  return static_cast<Index>(std::count_if(basis_directions.begin(), basis_directions.end(),
+                                          [](std::int8_t r) { return r >= 0; }));
 }
 
 namespace {

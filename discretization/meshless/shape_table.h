@@ -3,6 +3,7 @@
 // nodes themselves for nodal integration, Gauss points for EFG), stored flat:
 // point p's neighbours are neighbours.of(p), their values start at
 // neighbours.start[p] and their gradients at dim * neighbours.start[p].
+#include <cstdint>
 #include <span>
 #include <string>
 #include <vector>
@@ -22,6 +23,11 @@ struct ShapeTable {
   std::vector<double> condition;  // per point: condition number of the scaled moment matrix
   std::vector<double> weight_factor;  // per (point, neighbour): a cut's g_I (empty without cuts)
   std::vector<Vec3> weight_factor_gradient;  // per (point, neighbour): grad g_I (1/m; tables refreshed for cuts)
+  // per point (with cuts): -1 the full basis, else the r directions of
+  // mls_spanned_linear's basis (a cut left too few nodes on the point's side)
+  std::vector<std::int8_t> basis_directions;
+  /// Points whose basis a cut reduced (basis_directions >= 0).
+  Index reduced_basis_points() const;
   Index point_count() const { return neighbours.size(); }
   const double* values_of(Index p) const { return value.data() + neighbours.start[p]; }
   const double* gradients_of(Index p) const { return gradient.data() + dimension * neighbours.start[p]; }

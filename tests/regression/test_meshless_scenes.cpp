@@ -1,13 +1,16 @@
 // The meshless methods end to end (scene file -> kerf run -> summary.json):
 // the cantilever under gravity against FEM tet10, the plane-strain plate as a
 // patch test, weak-constraint reactions, and a long undamped explicit run of
-// nodal integration whose energy must stay bounded.
+// nodal integration whose energy must stay bounded; a node a cut leaves alone
+// moves as its own translation, and a static run refuses the piece held by nothing.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
 #include <map>
 #include <sstream>
 
+#include "app/run_scene.h"
 #include "support/test_support.h"
 
 namespace kerf {
@@ -110,6 +113,54 @@ TEST(MeshlessScenes, UndampedNodalRunKeepsEnergyBoundedFor10000Steps) {
   std::printf("undamped nodal run: max |energy balance| %.3e J, max external work %.3e J (%.2f%%)\n", drift, work,
               100 * drift / work);
   EXPECT_LT(drift, 0.01 * work);
+}
+
+// A free 2 x 1 x 1 cm block held at x = 2 cm; a cut on the plane x + y + z =
+// 1.5 mm cuts off its corner node (0, 0, 0) alone, 2 mm spacing. The node's
+// moment matrix is singular (it sees no other node): it gets Shepard's
+// function, psi = 1, and falls as a damped particle, u'' = -g - c u'. Before
+// the reduced basis the run stopped at set-up ("cannot be inverted").
+const char* corner_cut_off = R"(
+name: corner_cut_off
+domain: {box: {min: [0, 0, 0], max: [0.02, 0.01, 0.01]}}
+material: {young: 5.0e3, poisson: 0.35, density: 1000.0, damping: {mass: 4.0}}
+discretization: {method: nodal, meshless: {spacing: 0.002}}
+boundary:
+  - select: {plane: {axis: x, at: 0.02}}
+    fix: [x, y, z]
+body_force: {gravity: [0, 0, -9.81]}
+cuts:
+  - strip: [[-0.003, -0.003, 0.0075], [0.0075, -0.003, -0.003], [-0.003, 0.0075, -0.003], [0.0075, 0.0075, -0.0135]]
+solve: {analysis: dynamic, integrator: central-difference, dt: 0.0003, duration: 0.048}
+output:
+  vtk: false
+  probes:
+    - {name: corner, point: [0, 0, 0], field: displacement}
+)";
+
+TEST(MeshlessScenes, ANodeACutLeavesAloneFallsAsItsOwnTranslation) {
+  RunOptions options;
+  options.out_dir = testing::output_directory("corner_cut_off");
+  options.quiet = true;
+  const json s = run_scene(testing::scene_from_text(corner_cut_off), options).summary;
+  ASSERT_EQ(s["status"], "ok") << s["error"];
+  EXPECT_EQ(s["solver"]["mls_reduced_basis_nodes"].get<double>(), 1.0);
+  const double t = 0.048, c = 4.0, g = 9.81;  // 160 steps
+  const double falls = -(g / c) * (t - (1.0 - std::exp(-c * t)) / c);  // -10.6 mm
+  const json& u = s["probes"]["corner"]["displacement"];
+  EXPECT_NEAR(u[2].get<double>(), falls, 0.02 * std::abs(falls));
+  EXPECT_NEAR(u[0].get<double>(), 0.0, 1e-9);
+  EXPECT_NEAR(u[1].get<double>(), 0.0, 1e-9);
+}
+
+TEST(MeshlessScenes, AStaticRunRefusesANodeACutLeavesHeldByNothing) {
+  RunOptions options;
+  options.out_dir = testing::output_directory("corner_cut_off_static");
+  options.quiet = true;
+  const std::string message = testing::error_message(
+      [&] { run_scene(testing::scene_from_text(corner_cut_off, {"solve.analysis=static"}), options); });
+  testing::expect_mentions(message,
+                           {"numerically singular", "node 0 at [0 0 0]", "a cut leaves it 0 direction"});
 }
 
 }  // namespace

@@ -2,7 +2,8 @@
 // partition of unity and reproduction of linear (and, with the quadratic
 // basis, quadratic) fields to round-off with their derivatives, on uniform
 // and irregular node sets in 2D and 3D; derivatives against finite
-// differences; a support too small to invert is reported, not patched.
+// differences; a support too small to invert is reported, not patched;
+// the fallback a cut's flap or a node it isolates gets (mls_spanned_linear).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -170,6 +171,87 @@ TEST(Mls, SupportTooSmallToInvertIsReported) {
   EXPECT_FALSE(mls_shape_functions(3, MlsBasis::linear, Vec3(0.1, 0.01, 0), nodes, radii, false, shape));
   EXPECT_GT(shape.condition, 1e12);
   EXPECT_FALSE(mls_shape_functions(3, MlsBasis::linear, Vec3(5, 5, 5), nodes, radii, false, shape));
+}
+
+/// Where a cut leaves a point too few nodes for the full basis: the linear
+/// fields along the directions the nodes span are reproduced (values and
+/// gradients, to round-off), the gradient across them is zero, constants
+/// always; the derivatives agree with finite differences.
+void expect_spanned_reproduction(const std::vector<Vec3>& nodes, const Vec3& x, const std::vector<Vec3>& spanned,
+                                 int directions) {
+  std::vector<WeightValue> w;
+  for (const Vec3& node : nodes) w.push_back(quartic_weight(x, node, 0.5));
+  MlsShape shape;
+  ASSERT_TRUE(mls_spanned_linear(3, x, nodes, w, node_spread(3, x, nodes, w, 0.5), 0.5, true, shape));
+  EXPECT_EQ(shape.spanned_directions, directions);
+  double sum = 0.0;
+  Vec3 gradient_sum = Vec3::Zero();
+  for (std::size_t I = 0; I < nodes.size(); ++I) sum += shape.value[I], gradient_sum += shape.gradient[I];
+  EXPECT_NEAR(sum, 1.0, 1e-12);
+  EXPECT_LT(gradient_sum.norm(), 1e-10);
+  Mat3 across = Mat3::Identity();
+  for (const Vec3& t : spanned) {
+    double value = 0.0;
+    Vec3 gradient = Vec3::Zero();
+    for (std::size_t I = 0; I < nodes.size(); ++I)
+      value += shape.value[I] * t.dot(nodes[I]), gradient += shape.gradient[I] * t.dot(nodes[I]);
+    EXPECT_NEAR(value, t.dot(x), 1e-12);
+    EXPECT_LT((gradient - t).norm(), 1e-10);
+    across -= t * t.transpose();
+  }
+  // Across the spanned directions a linear field's gradient is zero.
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 n = across.col(k);
+    if (n.norm() < 1e-12) continue;
+    Vec3 gradient = Vec3::Zero();
+    for (std::size_t I = 0; I < nodes.size(); ++I) gradient += shape.gradient[I] * n.dot(nodes[I]);
+    EXPECT_LT(gradient.norm(), 1e-10);
+  }
+  const double h = 1e-6;
+  for (int k = 0; k < 3; ++k) {
+    MlsShape plus, minus;
+    std::vector<WeightValue> wp, wm;
+    for (const Vec3& node : nodes) {
+      wp.push_back(quartic_weight(x + h * Vec3::Unit(k), node, 0.5));
+      wm.push_back(quartic_weight(x - h * Vec3::Unit(k), node, 0.5));
+    }
+    // The directions held fixed, as at x (they are a property of the point's nodes).
+    const NodeSpread spread = node_spread(3, x, nodes, w, 0.5);
+    ASSERT_TRUE(mls_spanned_linear(3, x + h * Vec3::Unit(k), nodes, wp, spread, 0.5, false, plus));
+    ASSERT_TRUE(mls_spanned_linear(3, x - h * Vec3::Unit(k), nodes, wm, spread, 0.5, false, minus));
+    for (std::size_t I = 0; I < nodes.size(); ++I)
+      EXPECT_NEAR(shape.gradient[I][k], (plus.value[I] - minus.value[I]) / (2 * h), 1e-6);
+  }
+}
+
+TEST(Mls, ACutsFlapOneNodeLayerThickKeepsItsInPlaneLinearFields) {
+  // A plane of nodes (z = 0.2) that a cut parted from the rest: the point on
+  // it (a node, as nodal integration asks) and one just off it.
+  std::vector<Vec3> plane;
+  for (int i = -2; i <= 2; ++i)
+    for (int j = -2; j <= 2; ++j) plane.push_back(Vec3(0.1 * i + 0.02 * j * j, 0.1 * j, 0.2));
+  std::vector<Vec3> spanned{Vec3::UnitX(), Vec3::UnitY()};
+  expect_spanned_reproduction(plane, Vec3(0.0, 0.0, 0.2), spanned, 2);
+  expect_spanned_reproduction(plane, Vec3(0.03, -0.04, 0.21), spanned, 2);
+  // A tilted line of nodes: one direction.
+  std::vector<Vec3> line;
+  const Vec3 along = Vec3(1, 2, 2) / 3.0;
+  for (int i = -3; i <= 3; ++i) line.push_back(Vec3(0.1, 0.2, 0.3) + 0.07 * i * along);
+  expect_spanned_reproduction(line, Vec3(0.1, 0.2, 0.3), {along}, 1);
+  // A full linear basis on this flap is singular: the fallback is what keeps it.
+  std::vector<double> radii(plane.size(), 0.5);
+  MlsShape shape;
+  EXPECT_FALSE(mls_shape_functions(3, MlsBasis::linear, Vec3(0.0, 0.0, 0.2), plane, radii, false, shape));
+}
+
+TEST(Mls, ANodeACutLeavesAloneMovesAsItsOwnTranslation) {
+  std::vector<Vec3> alone{Vec3(0.3, 0.1, 0.2)};
+  expect_spanned_reproduction(alone, Vec3(0.3, 0.1, 0.2), {}, 0);
+  expect_spanned_reproduction(alone, Vec3(0.32, 0.1, 0.19), {}, 0);
+  MlsShape shape;
+  std::vector<WeightValue> none(1);  // no weight at all: nothing to fall back on
+  EXPECT_FALSE(mls_spanned_linear(3, Vec3(0.3, 0.1, 0.2), alone, none, node_spread(3, Vec3(0.3, 0.1, 0.2), alone, none, 0.5),
+                                  0.5, false, shape));
 }
 
 TEST(NeighborSearch, MatchesBruteForce) {
