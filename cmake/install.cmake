@@ -28,7 +28,7 @@ endforeach()
 install(FILES ${CMAKE_BINARY_DIR}/generated/kerf/version.h DESTINATION ${kerf_header_dir}/kerf)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/scenes/ DESTINATION ${CMAKE_INSTALL_DATADIR}/kerf/scenes
-  FILES_MATCHING PATTERN "*.yaml" PATTERN "*.msh")
+  FILES_MATCHING PATTERN "*.yaml" PATTERN "*.msh" PATTERN "*.geo")
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/studies/plots/ DESTINATION ${CMAKE_INSTALL_DATADIR}/kerf/studies/plots
   FILES_MATCHING PATTERN "*.py")
 

@@ -34,6 +34,7 @@ void pareto_study(const StudyOptions& options);
 void cut_study(const StudyOptions& options);
 void cut_convergence_study(const StudyOptions& options);
 void crack3d_study(const StudyOptions& options);
+void organ_study(const StudyOptions& options);
 void solvers_study(const StudyOptions& options);
 void scaling_study(const StudyOptions& options);
 

@@ -6,7 +6,7 @@
 namespace kerf {
 
 std::span<const StudyEntry> all_studies() {
-  static const std::array<StudyEntry, 9> entries{{
+  static const std::array<StudyEntry, 10> entries{{
       {"hertz", "indentation of a block by a rigid sphere against Hertz's solution, every method", hertz_study},
       {"timing", "time of a step of each method and integrator, phase by phase, beside the paper's", timing_study},
       {"stability", "critical steps, undamped energy, zero-energy modes, a 200-piece zigzag cut, locking",
@@ -17,6 +17,8 @@ std::span<const StudyEntry> all_studies() {
        cut_convergence_study},
       {"crack3d", "the 3D cracked slab: every method's crack opening refined against converged tet10 remesh",
        crack3d_study},
+      {"organ", "a curved body from a gmsh mesh sagging: each meshless way refined against converged tet10",
+       organ_study},
       {"solvers", "the FEM implicit step with each linear solver at three sizes: which is fastest where",
        solvers_study},
       {"scaling", "the same FEM scene on 1, 2 and 3 MPI ranks, phase by phase (strong and weak scaling)",
