@@ -350,6 +350,11 @@ std::size_t NodalBody::force_pass_bytes() const {
     bytes += slots * sizeof(double) + N * sizeof(double) * (12 + 3);  // k; sums, moments, positions
   if (!test_offsets_.empty()) bytes += slots * dim * sizeof(double);  // VCI's offsets
   if (natural_) bytes += natural_->table_bytes() + N * dim * sizeof(double) * 2 * threads;  // and its own pass
+  if (cut_points_) {  // split cells' points: rows, weights, stresses written and gathered, their force vector
+    const std::size_t cut_slots = cut_points_->shapes().neighbours.index.size(), P = cut_points_->point_count();
+    bytes += cut_slots * (sizeof(Index) + dim * sizeof(double)) +
+             P * (sizeof(Index) + sizeof(double) + 2 * 9 * sizeof(double)) + 2 * N * dim * sizeof(double);
+  }
   // u read (3D: and copied 4 to a node), each thread's forces zeroed, scattered into and summed, f written
   const std::size_t lanes = dim == 3 ? 4 : dim;
   return bytes + N * sizeof(double) * (2 * dim + (dim == 3 ? lanes : 0) + 2 * lanes * threads);
