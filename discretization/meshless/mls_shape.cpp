@@ -178,12 +178,14 @@ NodeSpread node_spread(int dim, const Vec3& x, std::span<const Vec3> nodes, std:
     const Vec3 d = (nodes[I] - x) / h - mean;
     covariance += w[I].value / total * d * d.transpose();
   }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(covariance.topLeftCorner(dim, dim));
-  const double largest = eigen.eigenvalues()[dim - 1];
+  if (dim == 2) covariance(2, 2) = -1.0;  // 2D: z is never a direction (its eigenvalue sorts first)
+  Eigen::SelfAdjointEigenSolver<Mat3> eigen;
+  eigen.computeDirect(covariance);  // closed form: no allocation, cheap enough for every point near a cut
+  const double largest = eigen.eigenvalues()[2];
   spread.weighted = true;
-  for (int k = dim - 1; k >= 0; --k)
+  for (int k = 2; k >= 3 - dim; --k)
     if (largest > 1e-12 && eigen.eigenvalues()[k] >= NodeSpread::thinnest * largest)
-      spread.axes.col(spread.directions++).head(dim) = eigen.eigenvectors().col(k);
+      spread.axes.col(spread.directions++) = eigen.eigenvectors().col(k);
   return spread;
 }
 

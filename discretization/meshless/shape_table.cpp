@@ -130,8 +130,15 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
   if (!cut_hides_nodes) return mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape);
   // A cut can leave the point's side nodes thin along some direction: the
   // linear fields they still tell apart are kept, and no steep gradient.
+  // Nodes that thin make the moment matrix's condition at least 1 / (1e-2
+  // of their largest variance, itself below 0.1 in the scaled basis), so a
+  // better conditioned full basis (most points at a cut: 10 to 110) is kept
+  // without looking at the spread.
+  constexpr double surely_spread = 300.0;
+  const bool full = mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape);
+  if (full && shape.condition < surely_spread) return true;
   const NodeSpread spread = node_spread(dim, point, x_, w_, scale);
-  if (spread.directions == dim && mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape)) return true;
+  if (full && spread.directions == dim) return true;
   return mls_spanned_linear(dim, point, x_, w_, spread, scale, hessians, shape);
 }
 
