@@ -1,12 +1,9 @@
 #include "app/cli.h"
 
-#include <omp.h>
-
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <thread>
 
 #include "app/resource_estimate.h"
 #include "app/run_scene.h"
@@ -89,17 +86,6 @@ void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
               " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");
 }
 
-/// Ranks on one machine share its cores: each runs as many OpenMP threads as
-/// its share (one when there are more ranks than cores), unless the user set
-/// OMP_NUM_THREADS.
-void share_cores_among_local_ranks(const RankShare& ranks) {
-  if (!ranks.distributed() || std::getenv("OMP_NUM_THREADS")) return;
-  const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
-  const int local_ranks = local ? std::max(1, std::atoi(local)) : ranks.count;
-  const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  omp_set_num_threads(std::max(1, cores / local_ranks));
-}
-
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
@@ -114,7 +100,6 @@ int run_command_line(const std::vector<std::string>& args) {
   }
   set_process_ranks(ranks);
   if (ranks.distributed()) set_first_rank_sender(&send_from_first_rank);
-  share_cores_among_local_ranks(ranks);
   try {
     a = parse(args);
     if (a.command == "--version" || a.command == "version") {

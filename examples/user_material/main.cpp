@@ -5,10 +5,10 @@
 
 #include "app/cli.h"
 #include "core/denormals.h"
-#include "core/openmp_limit.h"
+#include "core/thread_policy.h"
 
 int main(int argc, char** argv) {
-  kerf::limit_openmp_threads_to_cores(argv);
+  kerf::apply_thread_policy(argv);
   kerf::flush_denormals_to_zero();
   return kerf::run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

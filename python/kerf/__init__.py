@@ -9,12 +9,16 @@ arrays; run the studies. Errors are kerf.Error, carrying kerf's message
 """
 import os
 
-# CHOLMOD opens OpenMP regions of a fixed 4 threads; libgomp honours only
-# OMP_THREAD_LIMIT, read when it loads (as the `kerf` command does: its
-# factorizations are then the command's, digit for digit). Too late if
-# another module loaded libgomp first (numpy with OpenMP OpenBLAS): import
-# kerf first, or set OMP_THREAD_LIMIT yourself.
-os.environ.setdefault("OMP_THREAD_LIMIT", str(os.cpu_count() or 1))
+# libgomp reads its environment once, when it loads; set here as the `kerf`
+# command sets it (core/thread_policy.h): no more threads than the cores this
+# process may use (CHOLMOD opens regions of a fixed 4 otherwise), and threads
+# that sleep at a barrier instead of spinning (a spinning thread holds the core
+# another process or a preempted thread needs). Too late if another module
+# loaded libgomp first (numpy with OpenMP OpenBLAS): import kerf first, or set
+# them yourself. The summary's parallel.threads says what was in effect.
+os.environ.setdefault("OMP_THREAD_LIMIT", str(len(os.sched_getaffinity(0)) or 1))
+if "GOMP_SPINCOUNT" not in os.environ:
+    os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
 from ._kerf import Error, Result, Scene, __version__, load_scene, run, studies, study  # noqa: E402
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/denormals.h"
-#include "core/openmp_limit.h"
+#include "core/thread_policy.h"
 #include "floor_report.h"
 
 namespace {
@@ -25,7 +25,7 @@ bool asked_for(int argc, char** argv, const char* flag) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  kerf::limit_openmp_threads_to_cores(argv);
+  kerf::apply_thread_policy(argv);
   kerf::flush_denormals_to_zero();
   std::vector<std::string> defaults;
   if (!asked_for(argc, argv, "--benchmark_repetitions")) defaults.push_back("--benchmark_repetitions=5");

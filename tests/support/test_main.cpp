@@ -2,10 +2,10 @@
 #include <gtest/gtest.h>
 
 #include "core/denormals.h"
-#include "core/openmp_limit.h"
+#include "core/thread_policy.h"
 
 int main(int argc, char** argv) {
-  kerf::limit_openmp_threads_to_cores(argv);
+  kerf::apply_thread_policy(argv);
   kerf::flush_denormals_to_zero();
   ::testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
