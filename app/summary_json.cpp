@@ -2,7 +2,10 @@
 
 #include <algorithm>
 
+#include <omp.h>
+
 #include "core/peak_memory.h"
+#include "core/thread_policy.h"
 
 namespace kerf {
 namespace {
@@ -33,10 +36,18 @@ json solver_counters(const RunReport& report) {
               {"pcg_iterations", s.pcg_iterations},
               {"newton_iterations", s.newton_iterations},
               {"contact_augmentations", s.contact_augmentations},
+              {"definite_tangent_fallbacks", s.definite_tangent_fallbacks},
+              {"increments_taken", s.increments_taken},
+              {"cutbacks", s.cutbacks},
+              {"newton_converged_by",
+               {{"relative", s.newton_converged_by.relative},
+                {"absolute", s.newton_converged_by.absolute},
+                {"step", s.newton_converged_by.step}}},
               {"cut_remeshes", c.remeshes},
               {"cut_removed_cells", c.removed_cells},
               {"cut_updated_nodes", c.updated_nodes},
               {"cut_updated_points", c.updated_points}};
+  if (s.smallest_increment) out["smallest_increment"] = *s.smallest_increment;
   if (s.critical_dt_s) out["critical_dt_s"] = *s.critical_dt_s;
   if (s.critical_dt_element_bound_s) out["critical_dt_element_bound_s"] = *s.critical_dt_element_bound_s;
   if (s.critical_dt_min_s) {
@@ -59,6 +70,10 @@ void write_report(const RunReport& report, json& summary) {
                          {"rank0_owned_rows", r.owned_rows},
                          {"rank0_touched_rows", r.touched_rows},
                          {"rank0_peak_memory_mb", peak_memory_mb()}};
+  const std::string limited_by = thread_policy_field("limited_by");
+  summary["parallel"]["threads"] = {{"count", omp_get_max_threads()},
+                                    {"wait_policy", wait_policy_in_effect()},
+                                    {"limited_by", limited_by.empty() ? "set outside kerf" : limited_by}};
   if (!r.memory_by_rank.empty()) {
     json& marks = summary["parallel"]["peak_memory_mb_by_rank"];
     marks = {{"after_body", json::array()}, {"after_initialization", json::array()}, {"at_end", json::array()}};
@@ -74,7 +89,7 @@ void write_report(const RunReport& report, json& summary) {
   summary["timing"] = {{"setup_s", report.setup_seconds},
                        {"solve_s", report.solve_seconds},
                        {"phases", phases},
-                       {"step_ms", milliseconds_summary(report.step_seconds)},
+                       {"step_ms", counted_milliseconds(report.step_seconds)},
                        {"cut_update_ms", counted_milliseconds(report.cut_update_seconds)},
                        {"cut_refresh_ms", counted_milliseconds(report.cut_refresh_seconds)}};
   summary["stages"] = report.stages;

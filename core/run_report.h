@@ -46,6 +46,13 @@ struct SolverCounters {
   long pcg_iterations = 0;         // CG iterations preconditioned by a stale factor
   long newton_iterations = 0;      // Newton's linear solves, summed over the steps
   long contact_augmentations = 0;  // augmented Lagrangian rounds (static contact)
+  long definite_tangent_fallbacks = 0;  // factorizations of the exact tangent that failed and took the definite one
+  long increments_taken = 0;  // static load increments or implicit time steps solved (adaptive: with the cut ones)
+  long cutbacks = 0;          // increments halved after a failed Newton solve
+  std::optional<double> smallest_increment;  // load factor or s
+  struct ConvergedBy {
+    long relative = 0, absolute = 0, step = 0;  // Newton solves ended by each test
+  } newton_converged_by;
   std::optional<double> critical_dt_s;                // central differences: the stable step (s)
   std::optional<double> critical_dt_element_bound_s;  // FEM's element-by-element bound (s)
   std::optional<double> critical_dt_min_s;  // the smallest estimate after a cut grew (central differences)

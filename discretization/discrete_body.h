@@ -69,6 +69,10 @@ class DiscreteBody {
   /// K(u) = d f_int / du into `sink`; also f_int(u) into *f when f is given.
   virtual void tangent(const Vector& u, const BlockSink& sink, Vector* f) const = 0;
   virtual double strain_energy(const Vector& u) const = 0;
+  /// Whether tangent() assembles the definite tangent (each point's dP/dF with
+  /// its negative eigenvalues set to zero) instead of the exact one; the
+  /// solver chooses (solve.tangent), the forces are the same either way.
+  virtual void use_definite_tangent(bool definite) = 0;
   /// True when f_int is linear in u: the stiffness never changes.
   virtual bool is_linear() const = 0;
   /// False when the forces are tested with other functions than the

@@ -38,6 +38,10 @@ class MaterialLaw {
   /// Cauchy stress sigma = P F^T / det F.
   Mat3 cauchy_stress(const Mat3& F) const;
 
+  /// Whether stress_and_tangent projects dP/dF (the solver switches it, per
+  /// assembly, when a factorization of the exact tangent fails).
+  void set_definite_tangent(bool definite) { definite_tangent_ = definite; }
+  bool definite_tangent() const { return definite_tangent_; }
   /// True when P is linear in F, so the stiffness never changes.
   bool is_linear() const { return linear_; }
   MaterialModel model() const { return model_; }

@@ -52,7 +52,7 @@ enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
 enum class MassKind { lumped, consistent };
-enum class TangentKind { exact, definite };
+enum class TangentKind { exact, definite, automatic };
 enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
 enum class GridLookup { exact, interpolated };
 enum class FemCut { remesh, remove };
@@ -153,6 +153,10 @@ struct Cut {
 
 struct NewtonOptions {
   double tolerance = 1.0e-8;  // relative residual
+  /// N; unset: a fraction of the problem's load scale (newton.h absolute_floor_fraction).
+  std::optional<double> absolute_tolerance;
+  double step_tolerance = 1.0e-8;        // |du| relative to |u| (PETSc's stol)
+  double divergence_tolerance = 1.0e4;   // |r| past this many times the first: diverged (PETSc's divtol)
   int max_iterations = 25;
   bool line_search = true;
 };
@@ -165,15 +169,21 @@ struct SolveOptions {
   /// Central differences run a dt above the critical step instead of refusing
   /// it (the stability study looks for the true limit this way).
   bool allow_unstable_dt = false;
-  int load_steps = 1;      // static: load increments
+  int load_steps = 1;      // static: load increments (the first guess when adapt is on)
+  /// A static increment or implicit time step whose Newton solve fails is
+  /// halved (at most max_cutbacks times) and grown again after easy ones;
+  /// the run's output steps stay the scene's.
+  bool adapt = true;
+  int max_cutbacks = 10;
   NewtonOptions newton;
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   std::string petsc = "-ksp_type cg -pc_type gamg";
   double linear_tolerance = 1.0e-10;  // relative residual of iterative linear solves
   MassKind mass = MassKind::consistent;  // implicit runs; explicit always lumps
-  /// The material tangent implicit solves assemble: exact, or made positive
-  /// semidefinite point by point (nonlinear materials under compression).
-  TangentKind tangent = TangentKind::exact;
+  /// The material tangent implicit solves assemble: exact, made positive
+  /// semidefinite point by point (nonlinear materials under compression), or
+  /// exact with the definite one for an iteration whose factorization fails.
+  TangentKind tangent = TangentKind::automatic;
 
   /// Static and implicit runs solve linear systems; explicit ones do not.
   bool solves_linear_systems() const {
@@ -255,7 +265,7 @@ KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");
 KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
-KERF_ENUM_NAMES(TangentKind, "exact", "definite");
+KERF_ENUM_NAMES(TangentKind, "exact", "definite", "auto");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
 KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
 KERF_ENUM_NAMES(FemCut, "remesh", "remove");

@@ -125,8 +125,12 @@ json scene_to_json(const Scene& s) {
                 {"duration", so.duration},
                 {"allow_unstable_dt", so.allow_unstable_dt},
                 {"load_steps", so.load_steps},
+                {"adapt", so.adapt},
+                {"max_cutbacks", so.max_cutbacks},
                 {"newton",
                  {{"tolerance", so.newton.tolerance},
+                  {"step_tolerance", so.newton.step_tolerance},
+                  {"divergence_tolerance", so.newton.divergence_tolerance},
                   {"max_iterations", so.newton.max_iterations},
                   {"line_search", so.newton.line_search}}},
                 {"linear_solver", to_string(so.linear_solver)},
@@ -134,6 +138,7 @@ json scene_to_json(const Scene& s) {
                 {"linear_tolerance", so.linear_tolerance},
                 {"mass", to_string(so.mass)},
                 {"tangent", to_string(so.tangent)}};
+  if (so.newton.absolute_tolerance) j["solve"]["newton"]["absolute_tolerance"] = *so.newton.absolute_tolerance;
   json probes = json::array();
   for (const auto& p : s.output.probes) probes.push_back(probe_json(p, dim));
   j["output"] = {{"dir", s.output.dir},

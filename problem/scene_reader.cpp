@@ -248,7 +248,8 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   }
   if (f.is_null()) return;
   f.allow_only({"analysis", "integrator", "dt", "duration", "newton", "linear_solver", "petsc",
-                "linear_tolerance", "mass", "load_steps", "allow_unstable_dt", "tangent"});
+                "linear_tolerance", "mass", "load_steps", "allow_unstable_dt", "tangent", "adapt",
+                "max_cutbacks"});
   if (f.has("analysis")) s.analysis = f["analysis"].enumeration<Analysis>();
   if (f.has("integrator"))
     s.integrator = f["integrator"].enumeration<Integrator>();
@@ -256,10 +257,16 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   if (f.has("duration")) s.duration = f["duration"].number();
   if (f.has("allow_unstable_dt")) s.allow_unstable_dt = f["allow_unstable_dt"].boolean();
   if (f.has("load_steps")) s.load_steps = f["load_steps"].integer();
+  if (f.has("adapt")) s.adapt = f["adapt"].boolean();
+  if (f.has("max_cutbacks")) s.max_cutbacks = f["max_cutbacks"].integer();
   if (f.has("newton")) {
     YamlField n = f["newton"];
-    n.allow_only({"tolerance", "max_iterations", "line_search"});
+    n.allow_only({"tolerance", "absolute_tolerance", "step_tolerance", "divergence_tolerance", "max_iterations",
+                  "line_search"});
     if (n.has("tolerance")) s.newton.tolerance = n["tolerance"].number();
+    if (n.has("absolute_tolerance")) s.newton.absolute_tolerance = n["absolute_tolerance"].number();
+    if (n.has("step_tolerance")) s.newton.step_tolerance = n["step_tolerance"].number();
+    if (n.has("divergence_tolerance")) s.newton.divergence_tolerance = n["divergence_tolerance"].number();
     if (n.has("max_iterations")) s.newton.max_iterations = n["max_iterations"].integer();
     if (n.has("line_search")) s.newton.line_search = n["line_search"].boolean();
   }

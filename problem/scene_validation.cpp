@@ -246,6 +246,15 @@ void validate_solve(const Refusal& r, const SolveOptions& s) {
              "1 <= load_steps <= " + number_text(max_steps));
   r.in_range(s.newton.tolerance > 0.0 && s.newton.tolerance < 1.0, "solve.newton.tolerance", s.newton.tolerance,
              "0 < tolerance < 1 (relative residual)");
+  r.in_range(!s.newton.absolute_tolerance || *s.newton.absolute_tolerance >= 0.0,
+             "solve.newton.absolute_tolerance", s.newton.absolute_tolerance.value_or(0.0),
+             "absolute_tolerance >= 0 (N)");
+  r.in_range(s.newton.step_tolerance >= 0.0 && s.newton.step_tolerance < 1.0, "solve.newton.step_tolerance",
+             s.newton.step_tolerance, "0 <= step_tolerance < 1 (Newton step relative to the displacement)");
+  r.in_range(s.newton.divergence_tolerance > 1.0, "solve.newton.divergence_tolerance",
+             s.newton.divergence_tolerance, "divergence_tolerance > 1 (residual relative to the first)");
+  r.in_range(s.max_cutbacks >= 0 && s.max_cutbacks <= 40, "solve.max_cutbacks", s.max_cutbacks,
+             "0 <= max_cutbacks <= 40 (halvings of an increment)");
   r.in_range(s.newton.max_iterations >= 1, "solve.newton.max_iterations", s.newton.max_iterations,
              "max_iterations >= 1");
   r.in_range(s.linear_tolerance > 0.0 && s.linear_tolerance < 1.0, "solve.linear_tolerance", s.linear_tolerance,

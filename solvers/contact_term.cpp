@@ -190,6 +190,25 @@ void ContactTerm::add(const Vector& u, Vector& f, const BlockSink* sink) const {
   }
 }
 
+ContactTerm::AugmentationState ContactTerm::augmentation_state() const {
+  AugmentationState state;
+  for (const Sphere& s : spheres_) {
+    state.multipliers.push_back(s.multiplier);
+    state.depths.push_back({s.depth, s.previous_depth, s.previous_g});
+  }
+  return state;
+}
+
+void ContactTerm::restore(const AugmentationState& state) {
+  for (std::size_t i = 0; i < spheres_.size(); ++i) {
+    Sphere& s = spheres_[i];
+    s.multiplier = state.multipliers[i];
+    s.depth = state.depths[i][0];
+    s.previous_depth = state.depths[i][1];
+    s.previous_g = state.depths[i][2];
+  }
+}
+
 bool ContactTerm::augment(const Vector& u, double load) {
   // Multipliers change only when another solve follows, so that a settled
   // state keeps the tractions it is in equilibrium with.

@@ -28,6 +28,7 @@
 // added by PETSc); the sphere's force and the augmentation's decisions are
 // sums over the ranks, so every rank takes the same steps. The sphere's
 // rows belong to the last rank, which alone adds its mass.
+#include <array>
 #include <optional>
 #include <vector>
 
@@ -75,6 +76,14 @@ class ContactTerm {
   /// the static solve is repeated with the new multipliers and prescribed
   /// positions (a force-driven sphere's depth).
   bool augment(const Vector& u, double load);
+  /// What augment() changes (the multipliers, a force-driven sphere's depth
+  /// and secant), kept to undo a static increment whose solve failed.
+  struct AugmentationState {
+    std::vector<std::vector<double>> multipliers;
+    std::vector<std::array<double, 3>> depths;  // depth, previous_depth, previous_g
+  };
+  AugmentationState augmentation_state() const;
+  void restore(const AugmentationState& state);
   /// The state of sphere i at u.
   ContactReading reading(Index sphere, const Vector& u) const;
   /// The points' interpolation taken again from the body, whose shape

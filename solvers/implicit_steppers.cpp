@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "solvers/implicit_system.h"
+#include "solvers/increment_control.h"
 #include "solvers/newton.h"
 
 namespace kerf {
@@ -23,7 +24,14 @@ void apply_dirichlet(const std::vector<DirichletDof>& prescribed, Vector& u) {
 class StaticStepper final : public Stepper {
  public:
   StaticStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
-      : mechanics_(mechanics), options_(scene.solve), system_(mechanics, scene.solve, false, report), report_(report) {}
+      : mechanics_(mechanics),
+        options_(scene.solve),
+        system_(mechanics, scene.solve, false, report),
+        report_(report),
+        control_(1.0 / scene.solve.load_steps, scene.solve, report) {
+    load_at(1.0, f_ext_);
+    load_scale_ = f_ext_.norm();
+  }
 
   void initialize(SolverState& s) override {
     s.u = Vector::Zero(mechanics_.dof_count());
@@ -32,37 +40,31 @@ class StaticStepper final : public Stepper {
   }
 
   void advance(SolverState& s, double) override {
-    // From the step count, so the last step is exactly the full load.
-    const double load = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
-    load_at(load, f_ext_);
-    std::vector<DirichletDof> prescribed;
-    auto read_prescribed = [&] {
-      prescribed = mechanics_.dirichlet(load);
-      for (DirichletDof& d : prescribed)
-        if (d.scales_with_load) d.value *= load;
-    };
-    read_prescribed();
-    std::ostringstream where;
-    where << "static load step " << s.step + 1 << " (load factor " << load << ")";
-    auto residual = [&](const Vector& u, Vector& r, bool tangent) {
-      system_.internal_force(u, r, tangent);
-      r -= f_ext_;
-      if (tangent) system_.update_matrix(0.0, 1.0, where.str());
-    };
-    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
-    // Contact: augmented Lagrangian rounds until no point penetrates beyond
-    // tolerance and force-driven spheres carry their force.
-    int round = 0;
-    for (ContactTerm* contact = mechanics_.contact(); contact && contact->augment(s.u, load); ++round) {
-      KERF_CHECK(round < max_augmentations, where.str(), ": contact did not settle in ", max_augmentations,
-                 " augmented Lagrangian rounds (penetration or the sphere's force still off); try more load steps");
-      read_prescribed();
-      const int before = result_.iterations;
-      result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), prescribed, s.u, where.str());
-      result_.iterations += before;
+    // From the step count, so the last step is exactly the full load; the
+    // increments between are the control's.
+    const double target = std::min(1.0, static_cast<double>(s.step + 1) / options_.load_steps);
+    iterations_ = 0;
+    while (s.t < target) {
+      const double load = control_.next(s.t, target).end;
+      std::ostringstream where;
+      where << "static load step " << s.step + 1 << " (load factor " << load << ")";
+      const Vector start = s.u;
+      std::optional<ContactTerm::AugmentationState> contact_start;
+      if (const ContactTerm* contact = mechanics_.contact()) contact_start = contact->augmentation_state();
+      const NewtonResult result = solve_at(load, s.u, where.str());
+      iterations_ += result.iterations;
+      if (result.converged()) {
+        control_.accepted(load - s.t, result);
+        s.t = load;
+        continue;
+      }
+      // The tangent at the last equilibrium does not depend on the load: a
+      // smaller increment cannot make it factorizable.
+      if (result.status == NewtonStatus::factorization_failed && result.iterations == 0) throw Error(result.failure);
+      s.u = start;
+      if (contact_start) mechanics_.contact()->restore(*contact_start);
+      control_.rejected(s.t, load, describe(result, options_.newton), where.str());
     }
-    if (round > 0) report_.solver.contact_augmentations += round;
-    s.t = load;
     ++s.step;
   }
 
@@ -75,7 +77,7 @@ class StaticStepper final : public Stepper {
     return r - f_ext_;
   }
   void applied_load(const SolverState& s, Vector& f) const override { load_at(s.t, f); }
-  int last_iterations() const override { return result_.iterations; }
+  int last_iterations() const override { return iterations_; }
   double time_step() const override { return 1.0 / options_.load_steps; }
   int step_count() const override { return options_.load_steps; }
 
@@ -86,13 +88,54 @@ class StaticStepper final : public Stepper {
     f *= factor;
   }
 
+  /// Equilibrium at load factor `load` from u (Newton, then augmented
+  /// Lagrangian rounds while contact is still off): how the last solve ended.
+  NewtonResult solve_at(double load, Vector& u, const std::string& where) {
+    load_at(load, f_ext_);
+    std::vector<DirichletDof> prescribed;
+    auto read_prescribed = [&] {
+      prescribed = mechanics_.dirichlet(load);
+      for (DirichletDof& d : prescribed)
+        if (d.scales_with_load) d.value *= load;
+    };
+    read_prescribed();
+    auto residual = [&](const Vector& x, Vector& r, bool tangent) {
+      system_.internal_force(x, r, tangent);
+      r -= f_ext_;
+      if (tangent) system_.update_matrix(0.0, 1.0, where);
+    };
+    auto solve = [&] {
+      NewtonResult result =
+          newton_solve(system_, options_.newton, residual, {f_ext_.norm(), load_scale_}, prescribed, u, where);
+      load_scale_ = std::max(load_scale_, result.reference);  // a displacement-driven run's: its first residual
+      return result;
+    };
+    NewtonResult result = solve();
+    // Contact: augmented Lagrangian rounds until no point penetrates beyond
+    // tolerance and force-driven spheres carry their force.
+    int round = 0;
+    for (ContactTerm* contact = mechanics_.contact(); result.converged() && contact && contact->augment(u, load);
+         ++round) {
+      KERF_CHECK(round < max_augmentations, where, ": contact did not settle in ", max_augmentations,
+                 " augmented Lagrangian rounds (penetration or the sphere's force still off); try more load steps");
+      read_prescribed();
+      const int before = result.iterations;
+      result = solve();
+      result.iterations += before;
+    }
+    if (round > 0) report_.solver.contact_augmentations += round;
+    return result;
+  }
+
   static constexpr int max_augmentations = 50;
   MechanicalSystem& mechanics_;
   SolveOptions options_;
   ImplicitSystem system_;
   RunReport& report_;
+  IncrementControl control_;
   Vector f_ext_;
-  NewtonResult result_;
+  double load_scale_ = 0.0;  // N: the full load's norm, or the largest first residual
+  int iterations_ = 0;       // over the increments of the last step
 };
 
 /// One-step implicit dynamics: each scheme supplies a(u), v(u) and the
@@ -105,7 +148,8 @@ class DynamicImplicitStepper : public Stepper {
         options_(scene.solve),
         alpha_(scene.material.damping_mass),
         beta_(scene.material.damping_stiffness),
-        system_(mechanics, scene.solve, true, report) {}
+        system_(mechanics, scene.solve, true, report),
+        control_(scene.solve.dt, scene.solve, report) {}
 
   void initialize(SolverState& s) override {
     const Index n = mechanics_.dof_count();
@@ -116,10 +160,30 @@ class DynamicImplicitStepper : public Stepper {
   }
 
   void advance(SolverState& s, double dt) override {
-    const double t1 = s.t + dt;
+    // The step ends at t + dt whatever substeps the control takes on the way.
+    const double end = s.t + dt;
+    iterations_ = 0;
+    while (s.t < end) {
+      const auto [t1, step] = control_.next(s.t, end);
+      const std::string where = step_name(name(), s.step + 1, t1);
+      const NewtonResult result = attempt(s, t1, step, where);
+      iterations_ += result.iterations;
+      if (result.converged()) {
+        control_.accepted(step, result);
+        s.t = t1;
+        continue;
+      }
+      control_.rejected(s.t, t1, describe(result, options_.newton), where);
+    }
+    ++s.step;
+  }
+
+  /// One implicit step of length dt from s to t1: s (but its time) updated
+  /// when Newton converged, untouched otherwise.
+  NewtonResult attempt(SolverState& s, double t1, double dt, const std::string& where) {
     mechanics_.external_force(t1, f_ext_);
+    load_scale_ = std::max(load_scale_, f_ext_.norm());
     Vector u = s.u;
-    const std::string where = step_name(name(), s.step + 1, t1);
     Vector a, v;
     auto residual = [&](const Vector& x, Vector& r, bool tangent) {
       system_.internal_force(x, r, tangent);
@@ -131,13 +195,15 @@ class DynamicImplicitStepper : public Stepper {
         system_.update_matrix(cm, ck, where);
       }
     };
-    result_ = newton_solve(system_, options_.newton, residual, f_ext_.norm(), mechanics_.dirichlet(t1), u, where);
+    const NewtonResult result = newton_solve(system_, options_.newton, residual, {f_ext_.norm(), load_scale_},
+                                             mechanics_.dirichlet(t1), u, where);
+    load_scale_ = std::max(load_scale_, result.reference);
+    if (!result.converged()) return result;
     kinematics(s, dt, u, a, v);
     s.u = std::move(u);
     s.v = std::move(v);
     s.a = std::move(a);
-    s.t = t1;
-    ++s.step;
+    return result;
   }
 
   void discretization_changed(SolverState& s) override {
@@ -154,7 +220,7 @@ class DynamicImplicitStepper : public Stepper {
     return r;
   }
   void applied_load(const SolverState& s, Vector& f) const override { mechanics_.external_force(s.t, f); }
-  int last_iterations() const override { return result_.iterations; }
+  int last_iterations() const override { return iterations_; }
   double time_step() const override { return options_.dt; }
   int step_count() const override {
     return std::max(1, static_cast<int>(std::llround(options_.duration / options_.dt)));
@@ -186,8 +252,10 @@ class DynamicImplicitStepper : public Stepper {
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;
+  IncrementControl control_;
   Vector f_ext_;
-  NewtonResult result_;
+  double load_scale_ = 0.0;  // N: the largest external load or first residual so far
+  int iterations_ = 0;       // over the substeps of the last step
 };
 
 class ImplicitEulerStepper final : public DynamicImplicitStepper {

@@ -51,7 +51,7 @@ RowShare free_rows(const RowShare& dofs, const FreeDofs& free, Index dof_count, 
 
 }  // namespace
 
-ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass,
+ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass,
                                RunReport& report)
     : mechanics_(mechanics), report_(report), free_(mechanics.dof_count(), mechanics.dirichlet(0.0)) {
   ScopedTimer timer(report_.phases, Phase::setup);
@@ -72,6 +72,8 @@ ImplicitSystem::ImplicitSystem(const MechanicalSystem& mechanics, const SolveOpt
              "solve across MPI ranks does not take yet; expected discretization.meshless.vci: none for an implicit or "
              "static run under mpirun (explicit runs take VCI on any number of ranks)");
   reuse_factorization_ = symmetric_ && !mechanics_.is_linear() && solver_->exact_factor();
+  tangent_ = options.tangent;
+  mechanics_.use_definite_tangent(tangent_ == TangentKind::definite);
   if (needs_mass) {
     has_mass_ = true;
     lumped_ = options.mass == MassKind::lumped;
@@ -153,6 +155,24 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
   std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
   mechanics_.tangent_into(u, stiffness_, &f);
   stiffness_assembled(u);
+  if (tangent_ == TangentKind::automatic) tangent_point_ = u;
+}
+
+bool ImplicitSystem::falls_back_to_definite() const {
+  return tangent_ == TangentKind::automatic && !mechanics_.body().is_linear() &&
+         tangent_point_.size() == mechanics_.dof_count();
+}
+
+void ImplicitSystem::assemble_definite_tangent() {
+  ScopedTimer timer(report_.phases, Phase::assembly);
+  std::fill(stiffness_.valuePtr(), stiffness_.valuePtr() + stiffness_.nonZeros(), 0.0);
+  mechanics_.use_definite_tangent(true);
+  mechanics_.tangent_into(tangent_point_, stiffness_, nullptr);
+  stiffness_assembled(tangent_point_);
+  mechanics_.use_definite_tangent(false);  // the next iteration tries the exact tangent again
+  combine(last_mass_coefficient_, last_stiffness_coefficient_);
+  stiffness_changed_ = false;
+  report_.solver.definite_tangent_fallbacks += 1;
 }
 
 Vector ImplicitSystem::mass_times(const Vector& x) const {
@@ -191,7 +211,7 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
   stiffness_changed_ = false;
   last_mass_coefficient_ = cm;
   last_stiffness_coefficient_ = ck;
-  if (reuse_factorization_ && analyzed_ && same_coefficients) {
+  if (reuse_factorization_ && analyzed_ && same_coefficients && !factor_failed_) {
     factor_stale_ = true;
     return;
   }
@@ -220,14 +240,28 @@ void ImplicitSystem::factorize_now(const std::string& where) {
   report_.add_stage("factorization");
   report_.solver.factorizations += 1;
   LinearSolverStatus status = solver_->factorize(free_.restricted());
+  const bool fell_back = !status.ok && falls_back_to_definite();
+  if (fell_back) {
+    // An exact hyperelastic tangent under compression is indefinite: this
+    // iteration takes the definite one (same residual, slower convergence).
+    assemble_definite_tangent();
+    report_.solver.factorizations += 1;
+    status = solver_->factorize(free_.restricted());
+  }
+  factor_failed_ = !status.ok;
   if (!status.ok && status.failed_row && *status.failed_row < free_.free_count()) {
     const Index dof = free_.free_dofs()[*status.failed_row];
-    throw Error(where + ": " + status.message + "; " + mechanics_.describe_dof(dof) +
-                ". The body is singular there (too few conditions to hold it still), or its stiffness is "
-                "indefinite there (a nonlinear material under compression: solve.tangent: definite makes it "
-                "positive semidefinite)");
+    const std::string indefinite =
+        fell_back ? "its definite tangent failed too, so the body is not held there"
+        : tangent_ == TangentKind::exact
+            ? "or its stiffness is indefinite there (a nonlinear material under compression: solve.tangent: auto or "
+              "definite makes it positive semidefinite)"
+            : "";
+    throw FactorizationFailed(where + ": " + status.message + "; " + mechanics_.describe_dof(dof) +
+                              ". The body is singular there (too few conditions to hold it still)" +
+                              (indefinite.empty() ? "" : ", " + indefinite));
   }
-  KERF_CHECK(status.ok, where, ": ", status.message);
+  KERF_CHECK(status.ok, where, ": ", status.message);  // not the matrix's fault (a backend's set-up)
   factor_stale_ = false;
 }
 

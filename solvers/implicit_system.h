@@ -13,6 +13,7 @@
 // not be); serial only for now.
 #include <memory>
 
+#include "core/check.h"
 #include "core/run_report.h"
 #include "solvers/linear_solver.h"
 #include "solvers/mechanical_system.h"
@@ -20,9 +21,16 @@
 
 namespace kerf {
 
+/// A factorization that failed at this state (the matrix singular or
+/// indefinite there): a smaller increment may pass, so a stepper may retry.
+class FactorizationFailed : public Error {
+ public:
+  using Error::Error;
+};
+
 class ImplicitSystem {
  public:
-  ImplicitSystem(const MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass, RunReport& report);
+  ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& options, bool needs_mass, RunReport& report);
 
   const FreeDofs& free() const { return free_; }
   const MechanicalSystem& mechanics() const { return mechanics_; }
@@ -45,7 +53,7 @@ class ImplicitSystem {
   Vector solve(const Vector& rhs_free, const std::string& where);
 
  private:
-  const MechanicalSystem& mechanics_;
+  MechanicalSystem& mechanics_;
   RunReport& report_;
   FreeDofs free_;
   SparseMatrix stiffness_;
@@ -63,9 +71,12 @@ class ImplicitSystem {
   bool symmetric_ = true;  // false: GMRES on A, the factor of its Galerkin counterpart preconditioning
   SparseMatrix galerkin_;  // the Galerkin tangent, in K's pattern, when K is not symmetric
   bool factor_stale_ = false;         // A changed since the last factorization
+  bool factor_failed_ = false;        // the last factorization failed: nothing to precondition with
   double linear_tolerance_;           // relative residual of the preconditioned CG
   Vector previous_solution_;          // warm start of the next preconditioned CG
   std::unique_ptr<LinearSolver> solver_;
+  TangentKind tangent_ = TangentKind::automatic;
+  Vector tangent_point_;  // u of the last tangent (solve.tangent: auto), to assemble the definite one there
 
   /// A x for values of A in K's pattern, whole on every rank (a partial
   /// matrix's products are summed over the ranks).
@@ -73,7 +84,12 @@ class ImplicitSystem {
   /// A = c_M M + c_K K on the free dofs (a partial matrix: this rank's part).
   void combine(double cm, double ck);
   void read_mass();
+  /// Factorizes A; with solve.tangent: auto, a failed factorization of a
+  /// nonlinear body's tangent is retried once with the definite tangent.
   void factorize_now(const std::string& where);
+  bool falls_back_to_definite() const;
+  /// K at the last tangent's u with the definite material tangent, and A from it.
+  void assemble_definite_tangent();
   /// Conjugate gradients on A_ff preconditioned by the stale factor; false if
   /// it needs more than the allowed iterations.
   bool preconditioned_cg(const Vector& b, Vector& x, const std::string& where);

@@ -9,7 +9,7 @@
 
 namespace kerf {
 
-MechanicalSystem::MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report)
+MechanicalSystem::MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report)
     : body_(body), body_dofs_(body.dof_count()) {
   if (!scene.contact.empty()) {
     ScopedTimer timer(report.phases, Phase::setup);

@@ -19,9 +19,11 @@ class MechanicalSystem {
  public:
   /// The body with the scene's contact (none without `contact` in the scene).
   /// Throws when the scene has contact and the body has no surface samples.
-  MechanicalSystem(const DiscreteBody& body, const Scene& scene, RunReport& report);
+  MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report);
 
   const DiscreteBody& body() const { return body_; }
+  /// The body's tangents from now on: definite (projected) or exact (DiscreteBody::use_definite_tangent).
+  void use_definite_tangent(bool definite) { body_.use_definite_tangent(definite); }
   /// The body's shape functions changed in place (a growing cut): the terms read them again.
   void discretization_changed() {
     if (contact_) contact_->refresh_interpolations(body_);
@@ -90,7 +92,7 @@ class MechanicalSystem {
   /// The ranks' share of the dofs (share_), and rank_sum_ when the body is partitioned.
   void share_rows();
 
-  const DiscreteBody& body_;
+  DiscreteBody& body_;
   Index body_dofs_;
   std::unique_ptr<ContactTerm> contact_;
   RowShare share_;

@@ -55,7 +55,7 @@ FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share)
       facets_(boundary_facets(mesh_)),
       on_boundary_(boundary_node_flags(mesh_, facets_)),
       locator_(mesh_),
-      law_(scene.material, scene.solve.tangent == TangentKind::definite),
+      law_(scene.material),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
   share_cells(share);

@@ -39,6 +39,7 @@ class FemBody final : public DiscreteBody,
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
   double strain_energy(const Vector& u) const override;
   bool is_linear() const override { return law_.is_linear(); }
+  void use_definite_tangent(bool definite) override { law_.set_definite_tangent(definite); }
 
   Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override;

@@ -26,6 +26,7 @@ class MeshlessBody : public DiscreteBody,
   Vec3 node_position(Index node) const override { return domain_.nodes().positions[node]; }
   double mean_neighbors() const override { return domain_.mean_neighbors(); }
   bool is_linear() const override { return law_.is_linear(); }
+  void use_definite_tangent(bool definite) override { law_.set_definite_tangent(definite); }
 
   void external_force(double, Vector& f) const override { f = load_; }
   std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
@@ -78,7 +79,7 @@ class MeshlessBody : public DiscreteBody,
 
  protected:
   MeshlessBody(const Scene& scene, MeshlessDomain domain)
-      : domain_(std::move(domain)), law_(scene.material, scene.solve.tangent == TangentKind::definite), density_(scene.material.density),
+      : domain_(std::move(domain)), law_(scene.material), density_(scene.material.density),
         scene_(scene) {}
 
   /// The body's weakly imposed conditions (null when none).

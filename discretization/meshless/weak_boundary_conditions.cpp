@@ -102,7 +102,11 @@ void WeakBoundaryConditions::point_tangent(const Constraint& c, Index q, const V
   const double* g = c.shapes.gradients_of(q);
   const double w = c.points.weight[q], alpha = c.alpha[q];
   const Vec3& normal = c.points.normal[q];
-  if (nitsche_) {  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
+  // The definite tangent keeps the penalty part alone: the consistency terms
+  // are indefinite once the deformed material is stiffer than the alpha set
+  // at rest (an EFG block swinging under gravity, Nitsche at the clamp).
+  const bool consistency = nitsche_ && !law_.definite_tangent();
+  if (consistency) {  // T_a(j, i) = (dP/dF : e_i (x) g_a) n, component j
     Mat3 P;
     Mat9 A;
     law_.stress_and_tangent(deformation_gradient(c.shapes, q, u), P, A);
@@ -116,7 +120,7 @@ void WeakBoundaryConditions::point_tangent(const Constraint& c, Index q, const V
   for (Index a = 0; a < n; ++a)
     for (Index b = 0; b < n; ++b) {
       Mat3 K = alpha * phi[a] * phi[b] * c.projection;
-      if (nitsche_) K -= phi[a] * (c.projection * T[b]) + phi[b] * (c.projection * T[a]).transpose();
+      if (consistency) K -= phi[a] * (c.projection * T[b]) + phi[b] * (c.projection * T[a]).transpose();
       for (int i = 0; i < dim; ++i)
         for (int k = 0; k < dim; ++k) block[(dim * a + i) * size + dim * b + k] += w * K(i, k);
     }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 
 #include "app/run_scene.h"
 #include "core/check.h"
@@ -75,6 +76,18 @@ nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector
   RunOptions options;
   options.quiet = true;
   return run_scene(scene, options).summary;
+}
+
+nlohmann::ordered_json run_scene_text(const std::string& yaml, const std::vector<std::string>& overrides) {
+  const Scene scene = scene_from_text(yaml, overrides);
+  RunOptions options;
+  options.quiet = true;
+  try {
+    return run_scene(scene, options).summary;
+  } catch (const Error&) {
+    std::ifstream in(scene.output.dir + "/summary.json");
+    return nlohmann::ordered_json::parse(in);
+  }
 }
 
 }  // namespace kerf::testing
