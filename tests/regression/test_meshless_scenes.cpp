@@ -118,8 +118,9 @@ TEST(MeshlessScenes, UndampedNodalRunKeepsEnergyBoundedFor10000Steps) {
 // A free 2 x 1 x 1 cm block held at x = 2 cm; a cut on the plane x + y + z =
 // 1.5 mm cuts off its corner node (0, 0, 0) alone, 2 mm spacing. The node's
 // moment matrix is singular (it sees no other node): it gets Shepard's
-// function, psi = 1, and falls as a damped particle, u'' = -g - c u'. Before
-// the reduced basis the run stopped at set-up ("cannot be inverted").
+// function, psi = 1, and falls as a damped particle, u'' = -g - c u'. Without
+// the reduced basis the run would have stopped at set-up ("cannot be
+// inverted"), as a singular moment matrix does.
 const char* corner_cut_off = R"(
 name: corner_cut_off
 domain: {box: {min: [0, 0, 0], max: [0.02, 0.01, 0.01]}}
