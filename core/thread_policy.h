@@ -98,7 +98,7 @@ inline std::string wait_policy_in_effect() {
   if (const char* spin = std::getenv("GOMP_SPINCOUNT")) return std::string("spin count ") + spin;
   return "libgomp default (spins about 3 ms, then sleeps)";
 }
-/// A field of KERF_THREAD_POLICY ("cores", "limited_by"), or "" when kerf did not choose.
+/// A field of KERF_THREAD_POLICY ("limited_by"), or "" when kerf did not choose.
 inline std::string thread_policy_field(const std::string& field) {
   const char* marker = std::getenv("KERF_THREAD_POLICY");
   if (!marker) return "";
@@ -129,7 +129,7 @@ inline void apply_thread_policy(char** argv) {
   set("OMP_THREAD_LIMIT", cores);
   set("OMP_NUM_THREADS", cores);
   if (!std::getenv("GOMP_SPINCOUNT")) set("OMP_WAIT_POLICY", "passive");
-  ::setenv("KERF_THREAD_POLICY", (record + "cores=" + cores + "|limited_by=" + budget.limited_by + "|").c_str(), 1);
+  ::setenv("KERF_THREAD_POLICY", (record + "limited_by=" + budget.limited_by + "|").c_str(), 1);
   ::execv("/proc/self/exe", argv);
   // If the exec fails, carry on with the library's defaults.
 }

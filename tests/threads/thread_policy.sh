@@ -42,7 +42,7 @@ read -r count wait limited <<<"$(threads "$out/users")"
 
 # A kerf started by this one (as a study's point is): the parent's choice is
 # recorded as kerf's, so the child chooses again under its own affinity.
-marker="99999999|OMP_THREAD_LIMIT=$cores|OMP_NUM_THREADS=$cores|OMP_WAIT_POLICY=passive|cores=$cores|limited_by=machine|"
+marker="99999999|OMP_THREAD_LIMIT=$cores|OMP_NUM_THREADS=$cores|OMP_WAIT_POLICY=passive|limited_by=machine|"
 if [ "$cores" -gt 1 ]; then
   run child "${clean[@]}" KERF_THREAD_POLICY="$marker" OMP_THREAD_LIMIT=$cores OMP_NUM_THREADS=$cores \
     OMP_WAIT_POLICY=passive taskset -c 0
