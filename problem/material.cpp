@@ -206,6 +206,10 @@ void MaterialLaw::exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
 
 void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
   exact_tangent(F, P, dPdF);
+  make_definite(dPdF);
+}
+
+void MaterialLaw::make_definite(Mat9& dPdF) const {
   if (!definite_tangent_ || is_linear()) return;
   dPdF = 0.5 * (dPdF + dPdF.transpose()).eval();
   // Cheap test first: a Cholesky of the slightly shifted matrix succeeds when
@@ -214,6 +218,70 @@ void MaterialLaw::stress_and_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
   if (Eigen::LLT<Mat9>(dPdF + shift * Mat9::Identity()).info() == Eigen::Success) return;
   const Eigen::SelfAdjointEigenSolver<Mat9> eigen(dPdF);
   dPdF = eigen.eigenvectors() * eigen.eigenvalues().cwiseMax(0.0).asDiagonal() * eigen.eigenvectors().transpose();
+}
+
+MaterialLaw::BulkMeasure MaterialLaw::bulk_measure(const Mat3& F) const {
+  switch (model_) {
+    case MaterialModel::linear:
+      return {F.trace() - 3.0, Mat3::Identity()};
+    case MaterialModel::corotational: {
+      const RotationSvd svd(F);
+      return {svd.sigma.sum() - 3.0, svd.rotation()};  // tr(R^T F) = tr S; its gradient is R
+    }
+    case MaterialModel::stvk:
+      return {0.5 * (F.squaredNorm() - 3.0), F};
+    case MaterialModel::neohookean: {
+      const double J = F.determinant();
+      if (!(J > 0.0)) return {std::numeric_limits<double>::quiet_NaN(), Mat3::Zero()};
+      return {std::log(J), F.inverse().transpose()};
+    }
+    case MaterialModel::user:
+      break;
+  }
+  KERF_CHECK(false, "internal: a registered material law has no bulk measure");
+  return {};
+}
+
+Mat9 MaterialLaw::bulk_measure_hessian(const Mat3& F) const {
+  switch (model_) {
+    case MaterialModel::linear:
+      return Mat9::Zero();
+    case MaterialModel::corotational: {
+      const RotationSvd svd(F);
+      return tangent_from_directions([&](const Mat3& dF) { return svd.rotation_derivative(dF); });
+    }
+    case MaterialModel::stvk:
+      return Mat9::Identity();
+    case MaterialModel::neohookean: {
+      const Mat3 FinvT = F.inverse().transpose();
+      return tangent_from_directions([&](const Mat3& dF) { return Mat3(-FinvT * dF.transpose() * FinvT); });
+    }
+    case MaterialModel::user:
+      break;
+  }
+  KERF_CHECK(false, "internal: a registered material law has no bulk measure");
+  return {};
+}
+
+double MaterialLaw::energy_without_bulk(const Mat3& F) const {
+  const double m = bulk_measure(F).value;
+  return energy(F) - 0.5 * lame_.lambda * m * m;
+}
+
+Mat3 MaterialLaw::averaged_bulk_stress(const Mat3& F, double averaged) const {
+  const BulkMeasure b = bulk_measure(F);
+  return stress(F) + lame_.lambda * (averaged - b.value) * b.gradient;
+}
+
+void MaterialLaw::averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const {
+  exact_tangent(F, P, dPdF);
+  const BulkMeasure b = bulk_measure(F);
+  const double lambda = lame_.lambda;
+  const Eigen::Map<const Eigen::Matrix<double, 9, 1>> g(b.gradient.data());
+  P += lambda * (averaged - b.value) * b.gradient;
+  dPdF -= lambda * g * g.transpose();
+  if (model_ != MaterialModel::linear) dPdF += lambda * (averaged - b.value) * bulk_measure_hessian(F);
+  make_definite(dPdF);
 }
 
 Mat3 MaterialLaw::cauchy_stress(const Mat3& F) const {

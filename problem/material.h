@@ -38,6 +38,26 @@ class MaterialLaw {
   /// Cauchy stress sigma = P F^T / det F.
   Mat3 cauchy_stress(const Mat3& F) const;
 
+  /// The law's bulk term written lambda/2 m(F)^2, for elements that average
+  /// m over the nodes (the averaged-nodal-pressure tetrahedron): linear
+  /// tr(eps), corotational tr(R^T F) - 3, StVK tr(E), neo-Hookean ln J.
+  struct BulkMeasure {
+    double value = 0.0;
+    Mat3 gradient = Mat3::Zero();  // dm/dF
+  };
+  /// Whether the law has such a term: every built-in model, no registered one.
+  bool has_bulk_measure() const { return model_ != MaterialModel::user; }
+  BulkMeasure bulk_measure(const Mat3& F) const;
+  /// W(F) less the bulk term: the element's share when the nodes hold lambda/2 m^2.
+  double energy_without_bulk(const Mat3& F) const;
+  /// P with the bulk term's measure replaced by `averaged` (m's nodal average
+  /// over the element): P + lambda (averaged - m) dm/dF.
+  Mat3 averaged_bulk_stress(const Mat3& F, double averaged) const;
+  /// That P and its derivative at fixed `averaged`: dP/dF - lambda dm (x) dm +
+  /// lambda (averaged - m) d2m/dF2 (the averaged term's own stiffness couples
+  /// nodes: the element adds it from m's gradient). Projected as stress_and_tangent is.
+  void averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const;
+
   /// Whether stress_and_tangent projects dP/dF (the solver switches it, per
   /// assembly, when a factorization of the exact tangent fails).
   void set_definite_tangent(bool definite) { definite_tangent_ = definite; }
@@ -52,6 +72,10 @@ class MaterialLaw {
  private:
   /// The exact dP/dF.
   void exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const;
+  /// d2m/dF2 of bulk_measure, as dP/dF is laid out.
+  Mat9 bulk_measure_hessian(const Mat3& F) const;
+  /// With a definite tangent: dP/dF symmetrized and its negative eigenvalues set to zero.
+  void make_definite(Mat9& dPdF) const;
 
   MaterialModel model_;
   Lame lame_;

@@ -33,6 +33,9 @@ constexpr ElementKind element_kind(ElementType e) {
   }
   return {0, 0};
 }
+/// Where a linear simplex holds its law's bulk term: in each cell (locks as
+/// nu nears 0.5), or averaged over the nodes (averaged nodal pressure).
+enum class FemVolumetric { element, averaged_nodal };
 enum class NodePlacement { lattice, mesh };
 enum class MlsBasis { linear, quadratic };
 enum class WeightFunction { quartic };
@@ -87,6 +90,7 @@ struct RefineRegion {
 struct FemOptions {
   ElementType element = ElementType::tet4;
   double size = 0.0025;  // m
+  FemVolumetric volumetric = FemVolumetric::element;
 };
 
 struct MeshlessOptions {
@@ -253,6 +257,7 @@ struct EnumNames;
 KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean");
 KERF_ENUM_NAMES(Method, "fem", "efg", "nodal");
 KERF_ENUM_NAMES(ElementType, "tet4", "tet10", "tri3", "tri6");
+KERF_ENUM_NAMES(FemVolumetric, "element", "averaged_nodal");
 KERF_ENUM_NAMES(NodePlacement, "lattice", "mesh");
 KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
 KERF_ENUM_NAMES(WeightFunction, "quartic");

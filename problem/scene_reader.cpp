@@ -155,10 +155,11 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
   if (f.has("method")) d.method = f["method"].enumeration<Method>();
   if (f.has("fem")) {
     YamlField fe = f["fem"];
-    fe.allow_only({"element", "size"});
+    fe.allow_only({"element", "size", "volumetric"});
     if (fe.has("element"))
       d.fem.element = fe["element"].enumeration<ElementType>();
     if (fe.has("size")) d.fem.size = fe["size"].number();
+    if (fe.has("volumetric")) d.fem.volumetric = fe["volumetric"].enumeration<FemVolumetric>();
   }
   if (f.has("refine")) {
     YamlField list = f["refine"];

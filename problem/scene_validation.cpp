@@ -289,6 +289,24 @@ void validate_probe(const Refusal& r, const Scene& s, std::size_t i) {
   }
 }
 
+/// The averaged-nodal-pressure cell is a linear FEM simplex whose law has a bulk term.
+void validate_averaged_nodal(const Refusal& r, const Scene& scene) {
+  const DiscretizationOptions& d = scene.discretization;
+  if (d.fem.volumetric != FemVolumetric::averaged_nodal) return;
+  const std::string key = "discretization.fem.volumetric";
+  r.require(d.method == Method::fem, key,
+            "value 'averaged_nodal' with method '" + std::string(to_string(d.method)) +
+                "': it is a finite-element cell; expected method: fem, or volumetric: element");
+  r.require(element_kind(d.fem.element).order == 1 || !scene.mesh_file.empty(), key,
+            "value 'averaged_nodal' with element '" + std::string(to_string(d.fem.element)) +
+                "': it averages the bulk term of linear cells (quadratic ones barely lock); expected element: tet4 "
+                "or tri3, or volumetric: element");
+  r.require(scene.material.model != MaterialModel::user, key,
+            "value 'averaged_nodal' with the registered material '" + scene.material.user_model +
+                "': kerf knows the bulk term of its built-in laws only; expected a built-in material.model, or "
+                "volumetric: element");
+}
+
 }  // namespace
 
 void validate(const Scene& scene) {
@@ -300,6 +318,7 @@ void validate(const Scene& scene) {
   validate_contact(r, scene);
   for (std::size_t i = 0; i < scene.cuts.size(); ++i) validate_cut(r, scene, scene.cuts[i], item("cuts", i));
   validate_solve(r, scene.solve);
+  validate_averaged_nodal(r, scene);
   // VCI's forces are not the gradient of an energy: undamped central
   // differences on the tissue-sag slab grew without bound (inf at 10 s).
   if (scene.discretization.method == Method::nodal && scene.discretization.meshless.vci == VciOrder::linear &&

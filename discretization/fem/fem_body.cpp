@@ -91,8 +91,24 @@ FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share)
       wdet_[static_cast<std::size_t>(c) * nqp_ + q] = rule.weights[q] * det;
     }
   }
+  if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
   build_loads(scene);
   build_constraints(scene);
+}
+
+void FemBody::average_bulk_at_nodes(const Scene& scene) {
+  KERF_CHECK(mesh_.order == 1, scene.locate("discretization.fem.volumetric").describe(),
+             ": value 'averaged_nodal' averages the bulk term of linear cells, but the mesh ",
+             scene.mesh_file.empty() ? std::string() : "file " + scene.mesh_file + " ",
+             "holds quadratic ones; expected a linear mesh, or volumetric: element");
+  bulk_average_.emplace(mesh_, wdet_);  // one point per linear cell: its weight is its volume
+  if (!share_.distributed()) return;
+  // This rank's nodes' stars reach beyond its cells: their rows are touched too.
+  std::vector<char> reached(mesh_.node_count(), 0);
+  for (Index n : touched_nodes_) reached[n] = 1;
+  for (Index a = owned_nodes_.first; a < owned_nodes_.second; ++a)
+    for (Index n : bulk_average_->star(a)) reached[n] = 1;
+  touched_nodes_ = touched_node_list(std::move(reached), owned_nodes_);
 }
 
 void FemBody::share_cells(RankShare share) {
@@ -108,7 +124,32 @@ void FemBody::share_cells(RankShare share) {
 }
 
 template <int Dim, int Npc>
-void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const {
+FemBody::BulkAverages FemBody::bulk_averages(const Vector& u) const {
+  const Index cells = mesh_.cell_count();
+  BulkAverages out;
+  out.gradient.resize(cells);
+  std::vector<double> own(cells);
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < cells; ++c) {
+    auto nodes = mesh_.cell(c);
+    Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[static_cast<std::size_t>(c) * Npc * Dim]);
+    Mat3 F = Mat3::Identity();
+    for (int a = 0; a < Npc; ++a)
+      for (int i = 0; i < Dim; ++i) F.row(i).template head<Dim>() += u[Dim * nodes[a] + i] * G.row(a);
+    const MaterialLaw::BulkMeasure b = law_.bulk_measure(F);
+    own[c] = b.value;
+    out.gradient[c] = b.gradient;
+  }
+  out.node.resize(mesh_.node_count());
+  bulk_average_->to_nodes(own, out.node);
+  out.cell_mean.resize(cells);
+  bulk_average_->to_cells(out.node, out.cell_mean);
+  return out;
+}
+
+template <int Dim, int Npc>
+void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const ElementSink* sink, Vector* f,
+                           double* energy) const {
   using Work = ElementWork<Dim, Npc>;
   if (f) f->setZero(dof_count());
   double total_energy = 0.0;
@@ -141,11 +182,20 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
               const double w = wdet_[point];
               Mat3 F = Mat3::Identity();
               F.template topLeftCorner<Dim, Dim>() += U * G;
-              if (sink)
-                law_.stress_and_tangent(F, P, dPdF);
-              else
-                P = law_.stress(F);
-              if (energy) total_energy += w * law_.energy(F);
+              if (averages) {  // the nodes hold the bulk term: the cell feels its nodes' mean
+                const double mean = averages->cell_mean[c];
+                if (sink)
+                  law_.averaged_bulk_stress_and_tangent(F, mean, P, dPdF);
+                else
+                  P = law_.averaged_bulk_stress(F, mean);
+                if (energy) total_energy += w * law_.energy_without_bulk(F);
+              } else {
+                if (sink)
+                  law_.stress_and_tangent(F, P, dPdF);
+                else
+                  P = law_.stress(F);
+                if (energy) total_energy += w * law_.energy(F);
+              }
               Eigen::Matrix<double, Dim, Npc> fq = P.template topLeftCorner<Dim, Dim>() * G.transpose();
               for (int a = 0; a < Npc; ++a)
                 for (int i = 0; i < Dim; ++i) work.force[Dim * a + i] += w * fq(i, a);
@@ -173,10 +223,19 @@ void FemBody::element_loop(const Vector& u, const ElementSink* sink, Vector* f, 
   if (energy) *energy = total_energy;
 }
 
-void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const {
+void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy,
+                   const NodalBulkAverage::StarSink* stars, bool standard) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  dispatch_cell(mesh_.dimension, mesh_.order,
-                [&]<int Dim, int Npc>() { element_loop<Dim, Npc>(u, sink, f, energy); });
+  dispatch_cell(mesh_.dimension, mesh_.order, [&]<int Dim, int Npc>() {
+    if (!bulk_average_ || standard) return element_loop<Dim, Npc>(u, nullptr, sink, f, energy);
+    KERF_CHECK(!sink || stars, "internal: an averaged-nodal-pressure tangent without its stars' blocks");
+    const BulkAverages averages = bulk_averages<Dim, Npc>(u);
+    element_loop<Dim, Npc>(u, &averages, sink, f, energy);
+    const double lambda = law_.lame().lambda;
+    const auto [begin, end] = owned_nodes_;
+    if (energy) *energy += bulk_average_->nodal_energy(averages.node, lambda, begin, end);
+    if (stars) bulk_average_->star_tangents(averages.gradient, grad_, lambda, begin, end, *stars);
+  });
 }
 
 void FemBody::internal_force(const Vector& u, Vector& f) const { loop(u, nullptr, &f, nullptr); }
@@ -185,7 +244,10 @@ void FemBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   ElementSink forward = [&](Index, std::span<const Index> dofs, std::span<const double> values) {
     sink(dofs, values);
   };
-  loop(u, &forward, f, nullptr);
+  NodalBulkAverage::StarSink star = [&](Index, std::span<const Index> dofs, std::span<const double> values) {
+    sink(dofs, values);
+  };
+  loop(u, &forward, f, nullptr, &star);
 }
 
 namespace {
@@ -235,21 +297,60 @@ const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
   return pair_offsets_;
 }
 
+const std::vector<Index>& FemBody::star_offsets(const CsrView& m) const {
+  if (m.rows == star_offsets_pattern_.rows && m.outer == star_offsets_pattern_.outer &&
+      m.inner == star_offsets_pattern_.inner && !star_offset_start_.empty())
+    return star_offsets_;
+  const auto [begin, end] = owned_nodes_;
+  star_offset_start_.assign(end - begin + 1, 0);
+  for (Index a = begin; a < end; ++a) {
+    const Index k = static_cast<Index>(bulk_average_->star(a).size());
+    star_offset_start_[a - begin + 1] = star_offset_start_[a - begin] + k * k;
+  }
+  star_offsets_.resize(star_offset_start_.back());
+  Index lacking = -1;
+#pragma omp parallel for schedule(static)
+  for (Index a = begin; a < end; ++a)
+    if (!cell_block_offsets(bulk_average_->star(a), mesh_.dimension, m, &star_offsets_[star_offset_start_[a - begin]])) {
+#pragma omp critical(kerf_star_offsets)
+      lacking = a;
+    }
+  KERF_CHECK(lacking < 0, "internal: the matrix's pattern lacks a block of node ", lacking, "'s star");
+  star_offsets_pattern_ = m;
+  return star_offsets_;
+}
+
+namespace {
+
+/// Adds the dense block over `dofs` (whole nodes, dpn each) into m, node pair
+/// (a, b)'s columns starting at `offsets[a * nodes + b]` in a's rows.
+void add_block(const CsrView& m, const Index* offsets, int dpn, std::span<const Index> dofs,
+               std::span<const double> block) {
+  const int n = static_cast<int>(dofs.size()), nodes = n / dpn;
+  for (int a = 0; a < nodes; ++a)
+    for (int i = 0; i < dpn; ++i) {
+      double* row = m.values + m.outer[dofs[dpn * a + i]];
+      const double* from = &block[static_cast<std::size_t>(dpn * a + i) * n];
+      for (int b = 0; b < nodes; ++b)
+        for (int k = 0; k < dpn; ++k) row[offsets[a * nodes + b] + k] += from[dpn * b + k];
+    }
+}
+
+}  // namespace
+
 void FemBody::add_tangent_into(const Vector& u, const CsrView& m, Vector* f) const {
   const std::vector<Index>& offsets = pair_offsets(m);
-  const int dpn = mesh_.dimension, npc = npc_, n = dpn * npc;
+  const int dpn = mesh_.dimension, npc = npc_;
   // Cells of one phase share no node, hence no row: no two threads add to one value.
   ElementSink write = [&](Index c, std::span<const Index> dofs, std::span<const double> block) {
-    const Index* off = &offsets[static_cast<std::size_t>(c - cell_begin_) * npc * npc];
-    for (int a = 0; a < npc; ++a)
-      for (int i = 0; i < dpn; ++i) {
-        double* row = m.values + m.outer[dofs[dpn * a + i]];
-        const double* from = &block[(dpn * a + i) * n];
-        for (int b = 0; b < npc; ++b)
-          for (int k = 0; k < dpn; ++k) row[off[a * npc + b] + k] += from[dpn * b + k];
-      }
+    add_block(m, &offsets[static_cast<std::size_t>(c - cell_begin_) * npc * npc], dpn, dofs, block);
   };
-  loop(u, &write, f, nullptr);
+  if (!bulk_average_) return loop(u, &write, f, nullptr);
+  const std::vector<Index>& at_star = star_offsets(m);
+  NodalBulkAverage::StarSink write_star = [&](Index a, std::span<const Index> dofs, std::span<const double> block) {
+    add_block(m, &at_star[star_offset_start_[a - owned_nodes_.first]], dpn, dofs, block);
+  };
+  loop(u, &write, f, nullptr, &write_star);
 }
 
 double FemBody::strain_energy(const Vector& u) const {
@@ -281,6 +382,14 @@ void FemBody::visit_couplings(const CouplingVisitor& visit) const {
     auto nodes = mesh_.cell(c);
     for (int a = 0; a < npc_; ++a)
       for (int i = 0; i < dim; ++i) dofs[dim * a + i] = dim * nodes[a] + i;
+    visit(dofs);
+  }
+  if (!bulk_average_) return;
+  for (Index a = 0; a < mesh_.node_count(); ++a) {
+    auto star = bulk_average_->star(a);
+    dofs.resize(star.size() * dim);
+    for (std::size_t n = 0; n < star.size(); ++n)
+      for (int i = 0; i < dim; ++i) dofs[dim * n + i] = dim * star[n] + i;
     visit(dofs);
   }
 }
@@ -458,6 +567,9 @@ double FemBody::critical_time_step() const {
   // Element eigenvalue bound: omega_max <= max over elements of omega_e with the
   // element's own lumped mass, so 2 / max(omega_e) is a safe step.
   // A partitioned body's bound is over its own cells: the caller takes the smallest over the ranks.
+  // Each cell keeps its own bulk term here: averaged at the nodes, the bulk
+  // energy is no larger (sum_a V_a m_a^2 <= sum_e V_e m_e^2, m_a being a
+  // weighted mean of the m_e), so the standard cells' bound stays safe.
   const int dim = mesh_.dimension, n = npc_ * dim;
   std::vector<double> omega2(mesh_.cell_count(), 0.0);
   ElementSink element_frequency = [&](Index c, std::span<const Index>, std::span<const double> values) {
@@ -471,7 +583,7 @@ double FemBody::critical_time_step() const {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(0.5 * (A + A.transpose()), Eigen::EigenvaluesOnly);
     omega2[c] = eig.eigenvalues().maxCoeff();
   };
-  loop(Vector::Zero(dof_count()), &element_frequency, nullptr, nullptr);
+  loop(Vector::Zero(dof_count()), &element_frequency, nullptr, nullptr, nullptr, /*standard=*/true);
   return 2.0 / std::sqrt(*std::max_element(omega2.begin(), omega2.end()));
 }
 
@@ -513,6 +625,9 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
 
   OutputField stress{"stress", 9, std::vector<double>(9 * C, 0.0)};
   OutputField mises{"von_mises", 1, std::vector<double>(C, 0.0)};
+  BulkAverages averages;  // with the bulk term at the nodes, a cell's stress takes their mean
+  if (bulk_average_)
+    dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { averages = bulk_averages<Dim, Npc>(u); });
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
     Mat3 sigma = Mat3::Zero();
@@ -522,7 +637,8 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
       for (int a = 0; a < npc_; ++a)
         for (int i = 0; i < dim; ++i)
           for (int l = 0; l < dim; ++l) F(i, l) += u[dim * nodes[a] + i] * g[a * dim + l];
-      sigma += law_.cauchy_stress(F) / nqp_;
+      const Mat3 P = bulk_average_ ? law_.averaged_bulk_stress(F, averages.cell_mean[c]) : law_.stress(F);
+      sigma += P * F.transpose() / (F.determinant() * nqp_);
     }
     for (int k = 0; k < 9; ++k) stress.values[9 * c + k] = sigma(k / 3, k % 3);
     mises.values[c] = von_mises(sigma);

@@ -1,12 +1,15 @@
 #pragma once
 // The finite-element discretization: tet4/tet10 (3D) or tri3/tri6 (2D plane
 // strain, per metre of thickness) on a gmsh mesh, isoparametric, total Lagrangian.
-// Shape-function gradients and quadrature weights are computed once.
+// Shape-function gradients and quadrature weights are computed once. Linear
+// cells may hold the law's bulk term at the nodes (fem.volumetric:
+// averaged_nodal, nodal_bulk_average.h), which couples each node's star.
 #include <vector>
 
 #include "core/rank_share.h"
 #include "core/run_report.h"
 #include "discretization/body_capabilities.h"
+#include "discretization/fem/nodal_bulk_average.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cell_schedule.h"
@@ -64,9 +67,23 @@ class FemBody final : public DiscreteBody,
  private:
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
+  /// The bulk measure's state for one displacement: each cell's m_e's nodal
+  /// mean over its nodes, its dm/dF, and the nodes' m_a.
+  struct BulkAverages {
+    std::vector<double> cell_mean;
+    std::vector<Mat3> gradient;
+    std::vector<double> node;
+  };
   template <int Dim, int Npc>
-  void element_loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
-  void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy) const;
+  BulkAverages bulk_averages(const Vector& u) const;
+  /// `averages`: the cells take the nodal mean of the bulk measure (null: their own).
+  template <int Dim, int Npc>
+  void element_loop(const Vector& u, const BulkAverages* averages, const ElementSink* sink, Vector* f,
+                    double* energy) const;
+  /// With `stars`, and the bulk term averaged at the nodes, the nodal term's
+  /// stiffness goes to it for this rank's nodes. `standard`: every cell keeps its own bulk term.
+  void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy,
+            const NodalBulkAverage::StarSink* stars = nullptr, bool standard = false) const;
   /// Element mass matrix (npc x npc, scalar: multiply by the identity per component).
   Eigen::MatrixXd element_scalar_mass(Index c) const;
   /// rho g integrated against each node's shape function, into load_.
@@ -74,6 +91,10 @@ class FemBody final : public DiscreteBody,
   /// Each cell's node pairs (a, b): where column dpn node_b starts in row
   /// dpn node_a, from the row's start; built for one pattern, kept for the next call.
   const std::vector<Index>& pair_offsets(const CsrView& matrix) const;
+  /// The same for each node's star (star size^2 offsets per node, from star_offset_start_).
+  const std::vector<Index>& star_offsets(const CsrView& matrix) const;
+  /// fem.volumetric: averaged_nodal: the nodes' volumes and stars; refuses quadratic cells.
+  void average_bulk_at_nodes(const Scene& scene);
   void build_loads(const Scene& scene);
   void build_constraints(const Scene& scene);
   /// This rank's cells, rows and touched nodes; the whole mesh on one rank.
@@ -95,6 +116,9 @@ class FemBody final : public DiscreteBody,
   int nqp_;                    // stiffness quadrature points per cell
   mutable std::vector<Index> pair_offsets_;        // npc^2 per cell
   mutable CsrView offsets_pattern_;                // the pattern pair_offsets_ was built for
+  std::optional<NodalBulkAverage> bulk_average_;   // fem.volumetric: averaged_nodal
+  mutable std::vector<Index> star_offsets_, star_offset_start_;
+  mutable CsrView star_offsets_pattern_;
   std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
   std::vector<double> wdet_;   // C * nqp: weight * det J (m^3, or m^2 in 2D)
   QuadratureRule mass_rule_;   // exact for N_a N_b

@@ -16,17 +16,23 @@ namespace {
 struct ElementCase {
   ElementType element;
   int dim, order;
+  FemVolumetric volumetric = FemVolumetric::element;
 };
 
+// The linear cells twice: with their bulk term in the cell and averaged at the nodes.
 const ElementCase all_elements[] = {{ElementType::tet4, 3, 1},
                                     {ElementType::tet10, 3, 2},
                                     {ElementType::tri3, 2, 1},
-                                    {ElementType::tri6, 2, 2}};
+                                    {ElementType::tri6, 2, 2},
+                                    {ElementType::tet4, 3, 1, FemVolumetric::averaged_nodal},
+                                    {ElementType::tri3, 2, 1, FemVolumetric::averaged_nodal}};
 
-Scene plain_scene(int dim, MaterialModel model = MaterialModel::linear) {
+Scene plain_scene(int dim, MaterialModel model = MaterialModel::linear,
+                  FemVolumetric volumetric = FemVolumetric::element) {
   Scene s = testing::scene_from_text(dim == 3 ? "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
                                               : "dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\n");
   s.material.model = model;
+  s.discretization.fem.volumetric = volumetric;
   return s;
 }
 
@@ -34,7 +40,7 @@ class FemElementTest : public ::testing::TestWithParam<ElementCase> {
  protected:
   FemBody make_body(MaterialModel model = MaterialModel::linear, double size = 0.5) const {
     const ElementCase& e = GetParam();
-    return FemBody(plain_scene(e.dim, model), testing::unit_box_mesh(e.dim, e.order, size));
+    return FemBody(plain_scene(e.dim, model, e.volumetric), testing::unit_box_mesh(e.dim, e.order, size));
   }
 };
 
@@ -161,7 +167,7 @@ TEST_P(FemElementTest, DirectAssemblyWritesWhatTheSinkWrites) {
 // hold its own and every row its part writes; the owned rows tile the dofs.
 TEST_P(FemElementTest, ThreeRanksPartsAddUpToTheWhole) {
   const ElementCase& e = GetParam();
-  const Scene scene = plain_scene(e.dim, MaterialModel::corotational);
+  const Scene scene = plain_scene(e.dim, MaterialModel::corotational, e.volumetric);
   const Mesh mesh = testing::unit_box_mesh(e.dim, e.order, 0.4);
   const FemBody whole(scene, mesh);
   std::srand(7);
@@ -230,7 +236,10 @@ TEST_P(FemElementTest, CriticalStepShrinksWithTheMesh) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllElements, FemElementTest, ::testing::ValuesIn(all_elements),
-                         [](const auto& info) { return std::string(to_string(info.param.element)); });
+                         [](const auto& info) {
+                           const bool averaged = info.param.volumetric == FemVolumetric::averaged_nodal;
+                           return std::string(to_string(info.param.element)) + (averaged ? "_averaged_nodal" : "");
+                         });
 
 // A large rigid rotation strains nothing: the nonlinear materials see no force,
 // while small-strain linear elasticity reports spurious ones.

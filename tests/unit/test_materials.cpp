@@ -62,6 +62,41 @@ TEST_P(MaterialTest, TangentIsStressDerivative) {
   }
 }
 
+// The averaged-nodal-pressure cell moves lambda/2 m^2 to the nodes: what
+// stays in the cell must not hold lambda at all (or it still locks), and its
+// stress and tangent must be the derivatives of what it says they are.
+TEST_P(MaterialTest, BulkTermHoldsAllOfLambdaAndItsDerivativesAreConsistent) {
+  const double mu = Lame::from_young_poisson(1.0e6, 0.3).mu, poisson = 0.499;
+  const MaterialLaw law(GetParam(), 1.0e6, 0.3), stiff(GetParam(), 2.0 * mu * (1.0 + poisson), poisson);
+  ASSERT_GT(stiff.lame().lambda, 50.0 * law.lame().lambda);
+  const double h = 1e-6;
+  for (int seed = 1; seed <= 5; ++seed) {
+    const Mat3 F = sample_deformation(seed, 0.2);
+    const double averaged = law.bulk_measure(F).value + 0.05;
+    EXPECT_NEAR(law.energy_without_bulk(F), stiff.energy_without_bulk(F), 1e-12 * stiff.energy(F))  // round-off of what was taken away
+        << to_string(GetParam()) << " seed " << seed;
+    Mat3 P;
+    Mat9 C;
+    law.averaged_bulk_stress_and_tangent(F, averaged, P, C);
+    EXPECT_LT((P - law.averaged_bulk_stress(F, averaged)).norm(), 1e-12 * P.norm());
+    Mat9 numeric;
+    for (int k = 0; k < 3; ++k)
+      for (int l = 0; l < 3; ++l) {
+        Mat3 Fp = F, Fm = F;
+        Fp(k, l) += h;
+        Fm(k, l) -= h;
+        EXPECT_NEAR(law.bulk_measure(F).gradient(k, l),
+                    (law.bulk_measure(Fp).value - law.bulk_measure(Fm).value) / (2 * h), 1e-8);
+        // The cell's share: W - lambda/2 m^2, whose stress is the averaged one at averaged = 0.
+        EXPECT_NEAR(law.averaged_bulk_stress(F, 0.0)(k, l),
+                    (law.energy_without_bulk(Fp) - law.energy_without_bulk(Fm)) / (2 * h), 1e-6 * P.norm());
+        const Mat3 dP = (law.averaged_bulk_stress(Fp, averaged) - law.averaged_bulk_stress(Fm, averaged)) / (2 * h);
+        numeric.col(k + 3 * l) = Eigen::Map<const Eigen::Matrix<double, 9, 1>>(dP.data());
+      }
+    EXPECT_LT((C - numeric).norm(), 1e-6 * C.norm()) << to_string(GetParam()) << " seed " << seed;
+  }
+}
+
 TEST_P(MaterialTest, RestStateIsStressFree) {
   MaterialLaw law(GetParam(), 1.0e6, 0.3);
   EXPECT_LT(law.stress(Mat3::Identity()).norm(), 1e-9);
