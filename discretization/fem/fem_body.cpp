@@ -124,11 +124,12 @@ void FemBody::share_cells(RankShare share) {
 }
 
 template <int Dim, int Npc>
-FemBody::BulkAverages FemBody::bulk_averages(const Vector& u) const {
+FemBody::BulkAverages FemBody::bulk_averages(const Vector& u, bool with_stress) const {
   const Index cells = mesh_.cell_count();
   BulkAverages out;
   out.gradient.resize(cells);
-  std::vector<double> own(cells);
+  out.own.resize(cells);
+  if (with_stress) out.stress.resize(cells);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < cells; ++c) {
     auto nodes = mesh_.cell(c);
@@ -137,11 +138,12 @@ FemBody::BulkAverages FemBody::bulk_averages(const Vector& u) const {
     for (int a = 0; a < Npc; ++a)
       for (int i = 0; i < Dim; ++i) F.row(i).template head<Dim>() += u[Dim * nodes[a] + i] * G.row(a);
     const MaterialLaw::BulkMeasure b = law_.bulk_measure(F);
-    own[c] = b.value;
+    out.own[c] = b.value;
     out.gradient[c] = b.gradient;
+    if (with_stress) out.stress[c] = law_.stress(F);
   }
   out.node.resize(mesh_.node_count());
-  bulk_average_->to_nodes(own, out.node);
+  bulk_average_->to_nodes(out.own, out.node);
   out.cell_mean.resize(cells);
   bulk_average_->to_cells(out.node, out.cell_mean);
   return out;
@@ -186,6 +188,8 @@ void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const 
                 const double mean = averages->cell_mean[c];
                 if (sink)
                   law_.averaged_bulk_stress_and_tangent(F, mean, P, dPdF);
+                else if (!averages->stress.empty())  // as averaged_bulk_stress, from the first pass
+                  P = averages->stress[c] + law_.lame().lambda * (mean - averages->own[c]) * averages->gradient[c];
                 else
                   P = law_.averaged_bulk_stress(F, mean);
                 if (energy) total_energy += w * law_.energy_without_bulk(F);
@@ -229,7 +233,7 @@ void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* 
   dispatch_cell(mesh_.dimension, mesh_.order, [&]<int Dim, int Npc>() {
     if (!bulk_average_ || standard) return element_loop<Dim, Npc>(u, nullptr, sink, f, energy);
     KERF_CHECK(!sink || stars, "internal: an averaged-nodal-pressure tangent without its stars' blocks");
-    const BulkAverages averages = bulk_averages<Dim, Npc>(u);
+    const BulkAverages averages = bulk_averages<Dim, Npc>(u, /*with_stress=*/!sink);
     element_loop<Dim, Npc>(u, &averages, sink, f, energy);
     const double lambda = law_.lame().lambda;
     const auto [begin, end] = owned_nodes_;
@@ -627,7 +631,7 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
   OutputField mises{"von_mises", 1, std::vector<double>(C, 0.0)};
   BulkAverages averages;  // with the bulk term at the nodes, a cell's stress takes their mean
   if (bulk_average_)
-    dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { averages = bulk_averages<Dim, Npc>(u); });
+    dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { averages = bulk_averages<Dim, Npc>(u, false); });
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
     Mat3 sigma = Mat3::Zero();

@@ -68,14 +68,15 @@ class FemBody final : public DiscreteBody,
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
   /// The bulk measure's state for one displacement: each cell's m_e's nodal
-  /// mean over its nodes, its dm/dF, and the nodes' m_a.
+  /// mean over its nodes, its m_e and dm/dF, and the nodes' m_a; with
+  /// `with_stress`, each cell's own P too (a force alone then needs no second stress).
   struct BulkAverages {
-    std::vector<double> cell_mean;
-    std::vector<Mat3> gradient;
+    std::vector<double> cell_mean, own;
+    std::vector<Mat3> gradient, stress;
     std::vector<double> node;
   };
   template <int Dim, int Npc>
-  BulkAverages bulk_averages(const Vector& u) const;
+  BulkAverages bulk_averages(const Vector& u, bool with_stress) const;
   /// `averages`: the cells take the nodal mean of the bulk measure (null: their own).
   template <int Dim, int Npc>
   void element_loop(const Vector& u, const BulkAverages* averages, const ElementSink* sink, Vector* f,

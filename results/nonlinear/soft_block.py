@@ -8,11 +8,12 @@ import json, os, subprocess, sys, tempfile
 
 build, here = sys.argv[1], os.path.dirname(os.path.abspath(__file__))
 cases = [("tet4", ["discretization.fem.element=tet4"]), ("tet10", ["discretization.fem.element=tet10"]),
+         ("tet4_averaged_nodal", ["discretization.fem.volumetric=averaged_nodal"]),
          ("nodal", ["discretization.method=nodal", "solve.analysis=static"]), ("efg", ["discretization.method=efg"]),
          ("tet10_1.67mm", ["discretization.fem.element=tet10", "discretization.fem.size=0.001667"])]
 implicit = ["solve.analysis=dynamic", "solve.integrator=implicit-euler", "solve.dt=0.01", "solve.duration=0.5"]
 runs = [(name, "static", keys) for name, keys in cases] + \
-       [(name, "implicit", keys + implicit) for name, keys in cases if name in ("tet4", "tet10", "nodal")]
+       [(name, "implicit", keys + implicit) for name, keys in cases if name in ("tet4", "tet10", "tet4_averaged_nodal", "nodal")]
 print("method,analysis,status,nodes,tip_z_m,increments_taken,cutbacks,newton_iterations,definite_tangent_fallbacks,"
       "converged_by_step,solve_s,error")
 for name, analysis, keys in runs:
