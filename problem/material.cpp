@@ -114,6 +114,11 @@ double MaterialLaw::energy(const Mat3& F) const {
       double logJ = std::log(J);
       return 0.5 * mu * (F.squaredNorm() - 3.0) - mu * logJ + 0.5 * lambda * logJ * logJ;
     }
+    case MaterialModel::neohookean_uncoupled: {
+      const double J = F.determinant();
+      if (!(J > 0.0)) return std::numeric_limits<double>::infinity();
+      return 0.5 * mu * (std::pow(J, -2.0 / 3.0) * F.squaredNorm() - 3.0) + 0.5 * bulk_coefficient() * (J - 1.0) * (J - 1.0);
+    }
     case MaterialModel::user:
       return user_->energy(F);
   }
@@ -141,6 +146,12 @@ Mat3 MaterialLaw::stress(const Mat3& F) const {
       if (!(J > 0.0)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
       Mat3 FinvT = F.inverse().transpose();
       return mu * (F - FinvT) + lambda * std::log(J) * FinvT;
+    }
+    case MaterialModel::neohookean_uncoupled: {
+      const double J = F.determinant();
+      if (!(J > 0.0)) return Mat3::Constant(std::numeric_limits<double>::quiet_NaN());
+      const Mat3 FinvT = F.inverse().transpose();
+      return mu * std::pow(J, -2.0 / 3.0) * (F - F.squaredNorm() / 3.0 * FinvT) + bulk_coefficient() * (J - 1.0) * J * FinvT;
     }
     case MaterialModel::user:
       return user_->stress(F);
@@ -198,6 +209,23 @@ void MaterialLaw::exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
       });
       return;
     }
+    case MaterialModel::neohookean_uncoupled: {
+      P = stress(F);
+      if (!P.allFinite()) {
+        dPdF = Mat9::Constant(std::numeric_limits<double>::quiet_NaN());
+        return;
+      }
+      const double J = F.determinant(), a = std::pow(J, -2.0 / 3.0), I1 = F.squaredNorm(), K = bulk_coefficient();
+      const Mat3 Finv = F.inverse(), FinvT = Finv.transpose();
+      dPdF = tangent_from_directions([&](const Mat3& dF) {
+        const double trace = (Finv * dF).trace();  // dJ / J
+        const Mat3 dFinvT = -FinvT * dF.transpose() * FinvT;
+        const Mat3 isochoric = -2.0 / 3.0 * a * trace * (F - I1 / 3.0 * FinvT) +
+                               a * (dF - 2.0 / 3.0 * (F.array() * dF.array()).sum() * FinvT - I1 / 3.0 * dFinvT);
+        return Mat3(mu * isochoric + K * ((2.0 * J - 1.0) * J * trace * FinvT + J * (J - 1.0) * dFinvT));
+      });
+      return;
+    }
     case MaterialModel::user:
       user_->stress_and_tangent(F, P, dPdF);
       return;
@@ -235,6 +263,10 @@ MaterialLaw::BulkMeasure MaterialLaw::bulk_measure(const Mat3& F) const {
       if (!(J > 0.0)) return {std::numeric_limits<double>::quiet_NaN(), Mat3::Zero()};
       return {std::log(J), F.inverse().transpose()};
     }
+    case MaterialModel::neohookean_uncoupled: {
+      const double J = F.determinant();
+      return {J - 1.0, J * F.inverse().transpose()};
+    }
     case MaterialModel::user:
       break;
   }
@@ -256,6 +288,13 @@ Mat9 MaterialLaw::bulk_measure_hessian(const Mat3& F) const {
       const Mat3 FinvT = F.inverse().transpose();
       return tangent_from_directions([&](const Mat3& dF) { return Mat3(-FinvT * dF.transpose() * FinvT); });
     }
+    case MaterialModel::neohookean_uncoupled: {
+      const double J = F.determinant();
+      const Mat3 Finv = F.inverse(), FinvT = Finv.transpose();
+      return tangent_from_directions([&](const Mat3& dF) {
+        return Mat3(J * (Finv * dF).trace() * FinvT - J * FinvT * dF.transpose() * FinvT);
+      });
+    }
     case MaterialModel::user:
       break;
   }
@@ -265,18 +304,18 @@ Mat9 MaterialLaw::bulk_measure_hessian(const Mat3& F) const {
 
 double MaterialLaw::energy_without_bulk(const Mat3& F) const {
   const double m = bulk_measure(F).value;
-  return energy(F) - 0.5 * lame_.lambda * m * m;
+  return energy(F) - 0.5 * bulk_coefficient() * m * m;
 }
 
 Mat3 MaterialLaw::averaged_bulk_stress(const Mat3& F, double averaged) const {
   const BulkMeasure b = bulk_measure(F);
-  return stress(F) + lame_.lambda * (averaged - b.value) * b.gradient;
+  return stress(F) + bulk_coefficient() * (averaged - b.value) * b.gradient;
 }
 
 void MaterialLaw::averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const {
   exact_tangent(F, P, dPdF);
   const BulkMeasure b = bulk_measure(F);
-  const double lambda = lame_.lambda;
+  const double lambda = bulk_coefficient();
   const Eigen::Map<const Eigen::Matrix<double, 9, 1>> g(b.gradient.data());
   P += lambda * (averaged - b.value) * b.gradient;
   dPdF -= lambda * g * g.transpose();

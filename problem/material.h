@@ -38,9 +38,10 @@ class MaterialLaw {
   /// Cauchy stress sigma = P F^T / det F.
   Mat3 cauchy_stress(const Mat3& F) const;
 
-  /// The law's bulk term written lambda/2 m(F)^2, for elements that average
-  /// m over the nodes (the averaged-nodal-pressure tetrahedron): linear
-  /// tr(eps), corotational tr(R^T F) - 3, StVK tr(E), neo-Hookean ln J.
+  /// The law's bulk term written k/2 m(F)^2 (k: bulk_coefficient), for
+  /// elements that average m over the nodes (the averaged-nodal-pressure
+  /// tetrahedron): linear tr(eps), corotational tr(R^T F) - 3, StVK tr(E),
+  /// neo-Hookean ln J (k = lambda in these); uncoupled neo-Hookean J - 1 (k = K).
   struct BulkMeasure {
     double value = 0.0;
     Mat3 gradient = Mat3::Zero();  // dm/dF
@@ -48,13 +49,17 @@ class MaterialLaw {
   /// Whether the law has such a term: every built-in model, no registered one.
   bool has_bulk_measure() const { return model_ != MaterialModel::user; }
   BulkMeasure bulk_measure(const Mat3& F) const;
-  /// W(F) less the bulk term: the element's share when the nodes hold lambda/2 m^2.
+  /// k of the bulk term k/2 m^2 (Pa): lambda, or the bulk modulus K = lambda + 2 mu / 3.
+  double bulk_coefficient() const {
+    return model_ == MaterialModel::neohookean_uncoupled ? lame_.lambda + 2.0 * lame_.mu / 3.0 : lame_.lambda;
+  }
+  /// W(F) less the bulk term: the element's share when the nodes hold k/2 m^2.
   double energy_without_bulk(const Mat3& F) const;
   /// P with the bulk term's measure replaced by `averaged` (m's nodal average
-  /// over the element): P + lambda (averaged - m) dm/dF.
+  /// over the element): P + k (averaged - m) dm/dF.
   Mat3 averaged_bulk_stress(const Mat3& F, double averaged) const;
-  /// That P and its derivative at fixed `averaged`: dP/dF - lambda dm (x) dm +
-  /// lambda (averaged - m) d2m/dF2 (the averaged term's own stiffness couples
+  /// That P and its derivative at fixed `averaged`: dP/dF - k dm (x) dm +
+  /// k (averaged - m) d2m/dF2 (the averaged term's own stiffness couples
   /// nodes: the element adds it from m's gradient). Projected as stress_and_tangent is.
   void averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const;
 

@@ -16,7 +16,7 @@ namespace kerf {
 
 // `user`: a law registered from outside kerf (user_material.h), named by
 // Material::user_model; it has no EnumNames spelling.
-enum class MaterialModel { linear, corotational, stvk, neohookean, user };
+enum class MaterialModel { linear, corotational, stvk, neohookean, neohookean_uncoupled, user };
 enum class Method { fem, efg, nodal };
 enum class ElementType { tet4, tet10, tri3, tri6 };
 /// What the scene side needs of an element type: the dimension it fits, its polynomial order.
@@ -254,7 +254,7 @@ struct EnumNames;
   struct EnumNames<Enum> {                                          \
     static constexpr auto names = std::to_array<const char*>({__VA_ARGS__}); \
   }
-KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean");
+KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean", "neohookean_uncoupled");
 KERF_ENUM_NAMES(Method, "fem", "efg", "nodal");
 KERF_ENUM_NAMES(ElementType, "tet4", "tet10", "tri3", "tri6");
 KERF_ENUM_NAMES(FemVolumetric, "element", "averaged_nodal");

@@ -189,7 +189,7 @@ void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const 
                 if (sink)
                   law_.averaged_bulk_stress_and_tangent(F, mean, P, dPdF);
                 else if (!averages->stress.empty())  // as averaged_bulk_stress, from the first pass
-                  P = averages->stress[c] + law_.lame().lambda * (mean - averages->own[c]) * averages->gradient[c];
+                  P = averages->stress[c] + law_.bulk_coefficient() * (mean - averages->own[c]) * averages->gradient[c];
                 else
                   P = law_.averaged_bulk_stress(F, mean);
                 if (energy) total_energy += w * law_.energy_without_bulk(F);
@@ -235,10 +235,10 @@ void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* 
     KERF_CHECK(!sink || stars, "internal: an averaged-nodal-pressure tangent without its stars' blocks");
     const BulkAverages averages = bulk_averages<Dim, Npc>(u, /*with_stress=*/!sink);
     element_loop<Dim, Npc>(u, &averages, sink, f, energy);
-    const double lambda = law_.lame().lambda;
+    const double k = law_.bulk_coefficient();
     const auto [begin, end] = owned_nodes_;
-    if (energy) *energy += bulk_average_->nodal_energy(averages.node, lambda, begin, end);
-    if (stars) bulk_average_->star_tangents(averages.gradient, grad_, lambda, begin, end, *stars);
+    if (energy) *energy += bulk_average_->nodal_energy(averages.node, k, begin, end);
+    if (stars) bulk_average_->star_tangents(averages.gradient, grad_, k, begin, end, *stars);
   });
 }
 

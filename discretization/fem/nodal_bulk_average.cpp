@@ -64,13 +64,13 @@ void NodalBulkAverage::to_cells(std::span<const double> node, std::span<double> 
   }
 }
 
-double NodalBulkAverage::nodal_energy(std::span<const double> node, double lambda, Index begin, Index end) const {
+double NodalBulkAverage::nodal_energy(std::span<const double> node, double k, Index begin, Index end) const {
   double sum = 0.0;
   for (Index a = begin; a < end; ++a) sum += node_volume_[a] * node[a] * node[a];
-  return 0.5 * lambda * sum;
+  return 0.5 * k * sum;
 }
 
-void NodalBulkAverage::star_tangents(std::span<const Mat3> dm, std::span<const double> gradient, double lambda,
+void NodalBulkAverage::star_tangents(std::span<const Mat3> dm, std::span<const double> gradient, double k,
                                      Index begin, Index end, const StarSink& sink) const {
   Eigen::VectorXd b;
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block;
@@ -91,7 +91,7 @@ void NodalBulkAverage::star_tangents(std::span<const Mat3> dm, std::span<const d
           b[slot_[k * npc_ + j] * dim_ + i] += w * s;
         }
     }
-    block.noalias() = (node_volume_[a] * lambda) * b * b.transpose();
+    block.noalias() = (node_volume_[a] * k) * b * b.transpose();
     dofs.resize(size);
     for (std::size_t n = 0; n < nodes.size(); ++n)
       for (int i = 0; i < dim_; ++i) dofs[n * dim_ + i] = dim_ * nodes[n] + i;

@@ -1,12 +1,13 @@
 #pragma once
 // The averaged-nodal-pressure simplex (Bonet and Burton 1998; Joldes, Wittek
-// and Miller 2009): a linear tetrahedron (triangle) holds its law's bulk term
-// lambda/2 m^2 at the nodes instead of the cells, which lifts the volumetric
-// locking of linear simplices (one constraint per node, not one per cell):
+// and Miller 2009): a linear tetrahedron (triangle) holds its law's bulk
+// term k/2 m^2 (MaterialLaw::bulk_measure) at the nodes instead of the cells,
+// which lifts the volumetric locking of linear simplices (one constraint per
+// node, not one per cell):
 //   m_a = sum over the cells e around node a of V_e / ((dim+1) V_a) m_e
-//   energy = sum_e V_e (W(F_e) - lambda/2 m_e^2) + sum_a V_a lambda/2 m_a^2
+//   energy = sum_e V_e (W(F_e) - k/2 m_e^2) + sum_a V_a k/2 m_a^2
 // so each cell feels the mean of its nodes' m in its pressure, and the
-// nodal term's stiffness V_a lambda b_a b_a^T (b_a = dm_a/du) couples every
+// nodal term's stiffness V_a k b_a b_a^T (b_a = dm_a/du) couples every
 // pair of nodes of the cells around a: its star.
 #include <functional>
 #include <span>
@@ -26,8 +27,8 @@ class NodalBulkAverage {
   void to_nodes(std::span<const double> cell, std::span<double> node) const;
   /// The mean of each cell's nodes' values.
   void to_cells(std::span<const double> node, std::span<double> cell) const;
-  /// sum_a V_a lambda/2 m_a^2 over the nodes a in [begin, end).
-  double nodal_energy(std::span<const double> node, double lambda, Index begin, Index end) const;
+  /// sum_a V_a k/2 m_a^2 over the nodes a in [begin, end).
+  double nodal_energy(std::span<const double> node, double k, Index begin, Index end) const;
 
   /// The star of node a: the nodes of the cells around it, sorted.
   std::span<const Index> star(Index a) const {
@@ -35,10 +36,10 @@ class NodalBulkAverage {
   }
   /// Receives node a's star dofs (dim per star node) and its dense row-major block.
   using StarSink = std::function<void(Index a, std::span<const Index> dofs, std::span<const double> block)>;
-  /// For each node a in [begin, end): V_a lambda b_a b_a^T, b_a's entry for
+  /// For each node a in [begin, end): V_a k b_a b_a^T, b_a's entry for
   /// dof i of node n of cell e being V_e/((dim+1)V_a) sum_l dm_e(i,l) G_e(n,l),
   /// where `dm` is each cell's dm/dF and `gradient` each cell's dN/dX (npc x dim, row-major).
-  void star_tangents(std::span<const Mat3> dm, std::span<const double> gradient, double lambda, Index begin,
+  void star_tangents(std::span<const Mat3> dm, std::span<const double> gradient, double k, Index begin,
                      Index end, const StarSink& sink) const;
 
  private:

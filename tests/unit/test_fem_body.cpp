@@ -103,7 +103,8 @@ TEST_P(FemElementTest, RigidBodyModesAreInTheNullSpace) {
 
 TEST_P(FemElementTest, TangentMatchesFiniteDifferencesForEveryMaterial) {
   for (MaterialModel model :
-       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean,
+        MaterialModel::neohookean_uncoupled}) {
     FemBody body = make_body(model, 0.5);
     // A smooth field (strains up to about 0.3) plus small noise: large enough to
     // exercise the nonlinearity, too smooth to invert an element.
@@ -246,7 +247,8 @@ INSTANTIATE_TEST_SUITE_P(AllElements, FemElementTest, ::testing::ValuesIn(all_el
 TEST(FemObjectivity, RigidRotationIsForceFreeExceptForLinearElasticity) {
   Mat3 R = Eigen::AngleAxisd(0.8, Vec3(1, -2, 0.5).normalized()).toRotationMatrix();
   for (MaterialModel model :
-       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+       {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean,
+        MaterialModel::neohookean_uncoupled}) {
     FemBody body(plain_scene(3, model), testing::unit_box_mesh(3, 2, 0.5));
     Vector u(body.dof_count());
     for (Index n = 0; n < body.node_count(); ++n) u.segment<3>(3 * n) = (R - Mat3::Identity()) * body.mesh().nodes[n];

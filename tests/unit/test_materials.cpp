@@ -12,7 +12,7 @@ namespace kerf {
 namespace {
 
 const MaterialModel all_models[] = {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk,
-                                    MaterialModel::neohookean};
+                                    MaterialModel::neohookean, MaterialModel::neohookean_uncoupled};
 
 Mat3 sample_deformation(int seed, double amplitude) {
   std::srand(seed);
@@ -62,8 +62,8 @@ TEST_P(MaterialTest, TangentIsStressDerivative) {
   }
 }
 
-// The averaged-nodal-pressure cell moves lambda/2 m^2 to the nodes: what
-// stays in the cell must not hold lambda at all (or it still locks), and its
+// The averaged-nodal-pressure cell moves k/2 m^2 (k: lambda or the bulk
+// modulus) to the nodes: what stays in the cell must not hold k at all (or it still locks), and its
 // stress and tangent must be the derivatives of what it says they are.
 TEST_P(MaterialTest, BulkTermHoldsAllOfLambdaAndItsDerivativesAreConsistent) {
   const double mu = Lame::from_young_poisson(1.0e6, 0.3).mu, poisson = 0.499;
@@ -73,7 +73,8 @@ TEST_P(MaterialTest, BulkTermHoldsAllOfLambdaAndItsDerivativesAreConsistent) {
   for (int seed = 1; seed <= 5; ++seed) {
     const Mat3 F = sample_deformation(seed, 0.2);
     const double averaged = law.bulk_measure(F).value + 0.05;
-    EXPECT_NEAR(law.energy_without_bulk(F), stiff.energy_without_bulk(F), 1e-12 * stiff.energy(F))  // round-off of what was taken away
+    // Equal to round-off of what was taken away.
+    EXPECT_NEAR(law.energy_without_bulk(F), stiff.energy_without_bulk(F), 1e-12 * stiff.energy(F))
         << to_string(GetParam()) << " seed " << seed;
     Mat3 P;
     Mat9 C;
@@ -117,7 +118,8 @@ TEST_P(MaterialTest, SmallStrainMatchesHookesLaw) {
 TEST(Material, NonlinearModelsAreObjective) {
   Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
   Mat3 F = sample_deformation(3, 0.2);
-  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean,
+                          MaterialModel::neohookean_uncoupled}) {
     MaterialLaw law(m, 1.0e6, 0.3);
     EXPECT_NEAR(law.energy(R * F), law.energy(F), 1e-10 * law.energy(F)) << to_string(m);
     EXPECT_LT((law.stress(R * F) - R * law.stress(F)).norm(), 1e-9 * law.stress(F).norm()) << to_string(m);
@@ -128,7 +130,8 @@ TEST(Material, NonlinearModelsAreObjective) {
 // nonlinear models have negative eigenvalues; the definite one has none, and
 // where the exact one is already positive semidefinite (a stretch) it is the exact one.
 TEST(Material, DefiniteTangentIsTheExactOneWhereThatIsSemidefinite) {
-  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean}) {
+  for (MaterialModel m : {MaterialModel::corotational, MaterialModel::stvk, MaterialModel::neohookean,
+                          MaterialModel::neohookean_uncoupled}) {
     const Material material{m, 1.0e6, 0.3, 1000.0, 0.0, 0.0};
     const MaterialLaw exact(material), definite(material, true);
     Mat3 P, P_definite;

@@ -19,7 +19,7 @@ namespace kerf {
 namespace {
 
 const MaterialModel all_models[] = {MaterialModel::linear, MaterialModel::corotational, MaterialModel::stvk,
-                                    MaterialModel::neohookean};
+                                    MaterialModel::neohookean, MaterialModel::neohookean_uncoupled};
 
 /// A 3 x 2 x 2 cm block (or 3 x 2 cm plate) at 5 mm spacing, clamped at x = 0,
 /// pulled at x = 0.03, under gravity.
