@@ -8,7 +8,7 @@ packages=(
   libgmsh-dev gmsh libvtk9-dev libyaml-cpp-dev nlohmann-json3-dev libnanoflann-dev
   libgtest-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-dev pybind11-dev python3-pytest
-  paraview xvfb xauth
+  paraview xvfb xauth calculix-ccx
   "$@"
 )
 missing=()
