@@ -307,19 +307,18 @@ double MaterialLaw::energy_without_bulk(const Mat3& F) const {
   return energy(F) - 0.5 * bulk_coefficient() * m * m;
 }
 
-Mat3 MaterialLaw::averaged_bulk_stress(const Mat3& F, double averaged) const {
-  const BulkMeasure b = bulk_measure(F);
-  return stress(F) + bulk_coefficient() * (averaged - b.value) * b.gradient;
+Mat3 MaterialLaw::averaged_bulk_stress(const Mat3& F, const BulkMeasure& own, double averaged) const {
+  return stress(F) + bulk_coefficient() * (averaged - own.value) * own.gradient;
 }
 
-void MaterialLaw::averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const {
+void MaterialLaw::averaged_bulk_stress_and_tangent(const Mat3& F, const BulkMeasure& own, double averaged, Mat3& P,
+                                                   Mat9& dPdF) const {
   exact_tangent(F, P, dPdF);
-  const BulkMeasure b = bulk_measure(F);
-  const double lambda = bulk_coefficient();
-  const Eigen::Map<const Eigen::Matrix<double, 9, 1>> g(b.gradient.data());
-  P += lambda * (averaged - b.value) * b.gradient;
-  dPdF -= lambda * g * g.transpose();
-  if (model_ != MaterialModel::linear) dPdF += lambda * (averaged - b.value) * bulk_measure_hessian(F);
+  const double k = bulk_coefficient();
+  const Eigen::Map<const Eigen::Matrix<double, 9, 1>> g(own.gradient.data());
+  P += k * (averaged - own.value) * own.gradient;
+  dPdF -= k * g * g.transpose();
+  if (model_ != MaterialModel::linear) dPdF += k * (averaged - own.value) * bulk_measure_hessian(F);
   make_definite(dPdF);
 }
 

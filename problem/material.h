@@ -46,8 +46,7 @@ class MaterialLaw {
     double value = 0.0;
     Mat3 gradient = Mat3::Zero();  // dm/dF
   };
-  /// Whether the law has such a term: every built-in model, no registered one.
-  bool has_bulk_measure() const { return model_ != MaterialModel::user; }
+  /// Every built-in model has one; a registered law has none (refused by validation).
   BulkMeasure bulk_measure(const Mat3& F) const;
   /// k of the bulk term k/2 m^2 (Pa): lambda, or the bulk modulus K = lambda + 2 mu / 3.
   double bulk_coefficient() const {
@@ -56,12 +55,13 @@ class MaterialLaw {
   /// W(F) less the bulk term: the element's share when the nodes hold k/2 m^2.
   double energy_without_bulk(const Mat3& F) const;
   /// P with the bulk term's measure replaced by `averaged` (m's nodal average
-  /// over the element): P + k (averaged - m) dm/dF.
-  Mat3 averaged_bulk_stress(const Mat3& F, double averaged) const;
+  /// over the element): P + k (averaged - m) dm/dF, `own` being bulk_measure(F).
+  Mat3 averaged_bulk_stress(const Mat3& F, const BulkMeasure& own, double averaged) const;
   /// That P and its derivative at fixed `averaged`: dP/dF - k dm (x) dm +
   /// k (averaged - m) d2m/dF2 (the averaged term's own stiffness couples
   /// nodes: the element adds it from m's gradient). Projected as stress_and_tangent is.
-  void averaged_bulk_stress_and_tangent(const Mat3& F, double averaged, Mat3& P, Mat9& dPdF) const;
+  void averaged_bulk_stress_and_tangent(const Mat3& F, const BulkMeasure& own, double averaged, Mat3& P,
+                                        Mat9& dPdF) const;
 
   /// Whether stress_and_tangent projects dP/dF (the solver switches it, per
   /// assembly, when a factorization of the exact tangent fails).

@@ -124,12 +124,10 @@ void FemBody::share_cells(RankShare share) {
 }
 
 template <int Dim, int Npc>
-FemBody::BulkAverages FemBody::bulk_averages(const Vector& u, bool with_stress) const {
+void FemBody::bulk_averages(const Vector& u, BulkAverages& out) const {
   const Index cells = mesh_.cell_count();
-  BulkAverages out;
   out.gradient.resize(cells);
   out.own.resize(cells);
-  if (with_stress) out.stress.resize(cells);
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < cells; ++c) {
     auto nodes = mesh_.cell(c);
@@ -140,13 +138,11 @@ FemBody::BulkAverages FemBody::bulk_averages(const Vector& u, bool with_stress) 
     const MaterialLaw::BulkMeasure b = law_.bulk_measure(F);
     out.own[c] = b.value;
     out.gradient[c] = b.gradient;
-    if (with_stress) out.stress[c] = law_.stress(F);
   }
   out.node.resize(mesh_.node_count());
   bulk_average_->to_nodes(out.own, out.node);
   out.cell_mean.resize(cells);
   bulk_average_->to_cells(out.node, out.cell_mean);
-  return out;
 }
 
 template <int Dim, int Npc>
@@ -185,13 +181,12 @@ void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const 
               Mat3 F = Mat3::Identity();
               F.template topLeftCorner<Dim, Dim>() += U * G;
               if (averages) {  // the nodes hold the bulk term: the cell feels its nodes' mean
+                const MaterialLaw::BulkMeasure own{averages->own[c], averages->gradient[c]};
                 const double mean = averages->cell_mean[c];
                 if (sink)
-                  law_.averaged_bulk_stress_and_tangent(F, mean, P, dPdF);
-                else if (!averages->stress.empty())  // as averaged_bulk_stress, from the first pass
-                  P = averages->stress[c] + law_.bulk_coefficient() * (mean - averages->own[c]) * averages->gradient[c];
+                  law_.averaged_bulk_stress_and_tangent(F, own, mean, P, dPdF);
                 else
-                  P = law_.averaged_bulk_stress(F, mean);
+                  P = law_.averaged_bulk_stress(F, own, mean);
                 if (energy) total_energy += w * law_.energy_without_bulk(F);
               } else {
                 if (sink)
@@ -233,7 +228,8 @@ void FemBody::loop(const Vector& u, const ElementSink* sink, Vector* f, double* 
   dispatch_cell(mesh_.dimension, mesh_.order, [&]<int Dim, int Npc>() {
     if (!bulk_average_ || standard) return element_loop<Dim, Npc>(u, nullptr, sink, f, energy);
     KERF_CHECK(!sink || stars, "internal: an averaged-nodal-pressure tangent without its stars' blocks");
-    const BulkAverages averages = bulk_averages<Dim, Npc>(u, /*with_stress=*/!sink);
+    BulkAverages& averages = bulk_state_;
+    bulk_averages<Dim, Npc>(u, averages);
     element_loop<Dim, Npc>(u, &averages, sink, f, energy);
     const double k = law_.bulk_coefficient();
     const auto [begin, end] = owned_nodes_;
@@ -629,9 +625,9 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
 
   OutputField stress{"stress", 9, std::vector<double>(9 * C, 0.0)};
   OutputField mises{"von_mises", 1, std::vector<double>(C, 0.0)};
-  BulkAverages averages;  // with the bulk term at the nodes, a cell's stress takes their mean
+  BulkAverages& averages = bulk_state_;  // with the bulk term at the nodes, a cell's stress takes their mean
   if (bulk_average_)
-    dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { averages = bulk_averages<Dim, Npc>(u, false); });
+    dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { bulk_averages<Dim, Npc>(u, averages); });
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
     Mat3 sigma = Mat3::Zero();
@@ -641,7 +637,9 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
       for (int a = 0; a < npc_; ++a)
         for (int i = 0; i < dim; ++i)
           for (int l = 0; l < dim; ++l) F(i, l) += u[dim * nodes[a] + i] * g[a * dim + l];
-      const Mat3 P = bulk_average_ ? law_.averaged_bulk_stress(F, averages.cell_mean[c]) : law_.stress(F);
+      const Mat3 P = bulk_average_ ? law_.averaged_bulk_stress(F, {averages.own[c], averages.gradient[c]},
+                                                               averages.cell_mean[c])
+                                   : law_.stress(F);
       sigma += P * F.transpose() / (F.determinant() * nqp_);
     }
     for (int k = 0; k < 9; ++k) stress.values[9 * c + k] = sigma(k / 3, k % 3);

@@ -67,16 +67,15 @@ class FemBody final : public DiscreteBody,
  private:
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
-  /// The bulk measure's state for one displacement: each cell's m_e's nodal
-  /// mean over its nodes, its m_e and dm/dF, and the nodes' m_a; with
-  /// `with_stress`, each cell's own P too (a force alone then needs no second stress).
+  /// The bulk measure's state for one displacement: each cell's own m_e and
+  /// dm/dF, the nodes' m_a, and each cell's mean of its nodes' m_a.
   struct BulkAverages {
-    std::vector<double> cell_mean, own;
-    std::vector<Mat3> gradient, stress;
-    std::vector<double> node;
+    std::vector<double> own, node, cell_mean;
+    std::vector<Mat3> gradient;
   };
+  /// Fills `out` (sized once, then reused: a step allocates nothing).
   template <int Dim, int Npc>
-  BulkAverages bulk_averages(const Vector& u, bool with_stress) const;
+  void bulk_averages(const Vector& u, BulkAverages& out) const;
   /// `averages`: the cells take the nodal mean of the bulk measure (null: their own).
   template <int Dim, int Npc>
   void element_loop(const Vector& u, const BulkAverages* averages, const ElementSink* sink, Vector* f,
@@ -118,6 +117,7 @@ class FemBody final : public DiscreteBody,
   mutable std::vector<Index> pair_offsets_;        // npc^2 per cell
   mutable CsrView offsets_pattern_;                // the pattern pair_offsets_ was built for
   std::optional<NodalBulkAverage> bulk_average_;   // fem.volumetric: averaged_nodal
+  mutable BulkAverages bulk_state_;                // its state at the last displacement asked
   mutable std::vector<Index> star_offsets_, star_offset_start_;
   mutable CsrView star_offsets_pattern_;
   std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
