@@ -142,7 +142,7 @@ void FemBody::bulk_averages(const Vector& u, BulkAverages& out) const {
   out.node.resize(mesh_.node_count());
   bulk_average_->to_nodes(out.own, out.node);
   out.cell_mean.resize(cells);
-  bulk_average_->to_cells(out.node, out.cell_mean);
+  bulk_average_->to_cells(mesh_, out.node, out.cell_mean);
 }
 
 template <int Dim, int Npc>

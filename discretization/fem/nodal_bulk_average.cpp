@@ -8,8 +8,7 @@
 namespace kerf {
 
 NodalBulkAverage::NodalBulkAverage(const Mesh& mesh, std::span<const double> cell_volume)
-    : dim_(mesh.dimension), npc_(mesh.nodes_per_cell()), cells_(mesh.cells),
-      cell_volume_(cell_volume.begin(), cell_volume.end()) {
+    : dim_(mesh.dimension), npc_(mesh.nodes_per_cell()), cell_volume_(cell_volume.begin(), cell_volume.end()) {
   KERF_CHECK(mesh.order == 1, "internal: the averaged-nodal-pressure element needs linear cells");
   const Index nodes = mesh.node_count(), cells = mesh.cell_count();
   node_volume_.assign(nodes, 0.0);
@@ -54,12 +53,12 @@ void NodalBulkAverage::to_nodes(std::span<const double> cell, std::span<double> 
   }
 }
 
-void NodalBulkAverage::to_cells(std::span<const double> node, std::span<double> cell) const {
-  const Index cells = static_cast<Index>(cell_volume_.size());
+void NodalBulkAverage::to_cells(const Mesh& mesh, std::span<const double> node, std::span<double> cell) const {
+  const Index cells = mesh.cell_count();
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < cells; ++c) {
     double sum = 0.0;
-    for (int j = 0; j < npc_; ++j) sum += node[cells_[c * npc_ + j]];
+    for (Index n : mesh.cell(c)) sum += node[n];
     cell[c] = sum / npc_;
   }
 }

@@ -25,8 +25,8 @@ class NodalBulkAverage {
 
   /// m_a from the cells' m_e.
   void to_nodes(std::span<const double> cell, std::span<double> node) const;
-  /// The mean of each cell's nodes' values.
-  void to_cells(std::span<const double> node, std::span<double> cell) const;
+  /// The mean of each of `mesh`'s cells' nodes' values (the mesh it was built for).
+  void to_cells(const Mesh& mesh, std::span<const double> node, std::span<double> cell) const;
   /// sum_a V_a k/2 m_a^2 over the nodes a in [begin, end).
   double nodal_energy(std::span<const double> node, double k, Index begin, Index end) const;
 
@@ -44,7 +44,6 @@ class NodalBulkAverage {
 
  private:
   int dim_, npc_;
-  std::vector<Index> cells_;                   // the mesh's cells, npc_ each
   std::vector<double> node_volume_;            // V_a
   std::vector<double> cell_volume_;            // V_e
   std::vector<Index> around_start_, around_;   // the cells around each node (CSR)

@@ -10,6 +10,16 @@ import os, re, subprocess
 GMSH_TO_C3D10 = [0, 1, 2, 3, 4, 5, 6, 7, 9, 8]
 
 
+def box_mesh(box, size, folder, name="body"):
+    """A second-order gmsh mesh (format 2.2) of the box [0, box], made by the gmsh command; its path."""
+    geo, msh = os.path.join(folder, name + ".geo"), os.path.join(folder, name + ".msh")
+    open(geo, "w").write(f'SetFactory("OpenCASCADE");\nBox(1) = {{0, 0, 0, {box[0]}, {box[1]}, {box[2]}}};\n'
+                         f"Mesh.CharacteristicLengthMax = {size};\nMesh.ElementOrder = 2;\n"
+                         "Mesh.SecondOrderLinear = 1;\nMesh.MshFileVersion = 2.2;\n")
+    subprocess.run(["gmsh", "-3", geo, "-o", msh], check=True, capture_output=True)
+    return msh
+
+
 def read_msh22(path):
     """Nodes {id: (x, y, z)} and tet10 cells (gmsh node order) of a format 2.2 file."""
     lines = open(path).read().split("\n")

@@ -68,20 +68,12 @@ def kerf(text, keys, folder):
     return json.load(open(os.path.join(folder, "out", "summary.json")))
 
 
-def box_scene(case, name):
+def scene(case, name, mesh=None):
+    """The case's scene on its box, or on a mesh file."""
     x, y, z = case["box"]
-    return (f"name: {name}\ndomain: {{box: {{min: [0, 0, 0], max: [{x}, {y}, {z}]}}}}\n" + material +
+    domain = f"{{mesh: {mesh}}}" if mesh else f"{{box: {{min: [0, 0, 0], max: [{x}, {y}, {z}]}}}}"
+    return (f"name: {name}\ndomain: {domain}\n" + material +
             "discretization: {method: fem}\nsolve: {analysis: static}\n" + case["scene"])
-
-
-def mesh_file(case, size, folder):
-    x, y, z = case["box"]
-    geo, msh = os.path.join(folder, "body.geo"), os.path.join(folder, "body.msh")
-    open(geo, "w").write(f'SetFactory("OpenCASCADE");\nBox(1) = {{0, 0, 0, {x}, {y}, {z}}};\n'
-                         f"Mesh.CharacteristicLengthMax = {size};\nMesh.ElementOrder = 2;\n"
-                         "Mesh.SecondOrderLinear = 1;\nMesh.MshFileVersion = 2.2;\n")
-    subprocess.run(["gmsh", "-3", geo, "-o", msh], check=True, capture_output=True)
-    return msh
 
 
 def row(case, method, summary, value, reference):
@@ -100,21 +92,18 @@ for name, case in CASES.items():
         continue
     with tempfile.TemporaryDirectory() as work:
         if case["ccx"]:
-            msh = mesh_file(case, 0.001667, work)
+            msh = calculix.box_mesh(case["box"], 0.001667, work)
             c = case["ccx"]
             reference = c["value"](calculix.run(msh, os.path.join(work, "ccx"), E, NU, RHO, c["sets"], c["boundary"],
                                                 c["loads"], c["prints"]))
-            on_mesh = box_scene(case, name).replace(
-                f"domain: {{box: {{min: [0, 0, 0], max: [{case['box'][0]}, {case['box'][1]}, {case['box'][2]}]}}}}",
-                f"domain: {{mesh: {msh}}}")
-            s = kerf(on_mesh, [], os.path.join(work, "on_mesh"))
+            s = kerf(scene(case, name, msh), [], os.path.join(work, "on_mesh"))
             print(f"{name},calculix_c3d10_1.67mm,ok,,{reference},{reference},+0.0000,,,,,\"\"", flush=True)
             row(name, "tet10_same_mesh_as_calculix", s, case["value"](s) if s["status"] == "ok" else None, reference)
         else:
-            s = kerf(box_scene(case, name), ["discretization.fem.element=tet10", "discretization.fem.size=0.002"],
+            s = kerf(scene(case, name), ["discretization.fem.element=tet10", "discretization.fem.size=0.002"],
                      os.path.join(work, "reference"))
             reference = case["value"](s) if s["status"] == "ok" else None
             row(name, "tet10_2mm_reference", s, reference, reference)
         for method, keys in METHODS:
-            s = kerf(box_scene(case, name), keys, os.path.join(work, method))
+            s = kerf(scene(case, name), keys, os.path.join(work, method))
             row(name, method, s, case["value"](s) if s["status"] == "ok" else None, reference)

@@ -16,15 +16,6 @@ kerf, work = sys.argv[1], sys.argv[2]
 E, NU, RHO = 3.0e3, 0.45, 1000.0
 
 
-def mesh(name, box, size):
-    geo, msh = os.path.join(work, name + ".geo"), os.path.join(work, name + ".msh")
-    open(geo, "w").write(f'SetFactory("OpenCASCADE");\nBox(1) = {{0, 0, 0, {box[0]}, {box[1]}, {box[2]}}};\n'
-                         f"Mesh.CharacteristicLengthMax = {size};\nMesh.ElementOrder = 2;\n"
-                         "Mesh.SecondOrderLinear = 1;\nMesh.MshFileVersion = 2.2;\n")
-    subprocess.run(["gmsh", "-3", geo, "-o", msh], check=True, capture_output=True)
-    return msh
-
-
 def run_kerf(name, msh, rest):
     scene = os.path.join(work, name + ".yaml")
     open(scene, "w").write(f"name: {name}\ndomain: {{mesh: {msh}}}\n"
@@ -43,7 +34,7 @@ def agree(what, ours, theirs, scale):
 
 os.makedirs(work, exist_ok=True)
 ok = True
-msh = mesh("sag", (0.04, 0.02, 0.02), 0.005)
+msh = calculix.box_mesh((0.04, 0.02, 0.02), 0.005, work, "sag")
 corner = lambda x: abs(x[0] - 0.04) < 1e-9 and x[1] < 1e-9 and x[2] < 1e-9
 theirs = calculix.run(msh, os.path.join(work, "sag_ccx"), E, NU, RHO, {"Nfix": lambda x: x[0] < 1e-9, "Nq": corner},
                       ["Nfix, 1, 3"], ["*DLOAD", "Eall, GRAV, 9.81, 0., 0., -1."], {"Nq": "U"})
@@ -54,7 +45,7 @@ u = list(theirs["Nq"].values())[0]
 ok &= agree("sag corner displacement (m)", ours["probes"]["q"]["displacement"], u, abs(u[2]))
 ok &= abs(u[2]) > 0.02  # large deformation, or the comparison proves little
 
-msh = mesh("compression", (0.02, 0.02, 0.02), 0.005)
+msh = calculix.box_mesh((0.02, 0.02, 0.02), 0.005, work, "compression")
 theirs = calculix.run(msh, os.path.join(work, "compression_ccx"), E, NU, RHO,
                       {"Nbottom": lambda x: x[2] < 1e-9, "Ntop": lambda x: abs(x[2] - 0.02) < 1e-9},
                       ["Nbottom, 1, 3", "Ntop, 1, 2", "Ntop, 3, 3, -0.006"], [], {"Ntop": "RF"})
