@@ -183,6 +183,7 @@ class DynamicImplicitStepper : public Stepper {
   NewtonResult attempt(SolverState& s, double t1, double dt, const std::string& where) {
     mechanics_.external_force(t1, f_ext_);
     load_scale_ = std::max(load_scale_, f_ext_.norm());
+    mechanics_.begin_time_step(s.u);
     Vector u = s.u;
     Vector a, v;
     auto residual = [&](const Vector& x, Vector& r, bool tangent) {
@@ -248,7 +249,7 @@ class DynamicImplicitStepper : public Stepper {
     return a;
   }
 
-  const MechanicalSystem& mechanics_;
+  MechanicalSystem& mechanics_;
   SolveOptions options_;
   double alpha_, beta_;  // Rayleigh damping C = alpha M + beta K
   ImplicitSystem system_;

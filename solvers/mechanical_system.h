@@ -28,6 +28,11 @@ class MechanicalSystem {
   void discretization_changed() {
     if (contact_) contact_->refresh_interpolations(body_);
   }
+  /// An implicit time step starts from u (all dofs): DiscreteBody::begin_time_step.
+  void begin_time_step(const Vector& u) {
+    Vector buffer;
+    body_.begin_time_step(body_part(u, buffer));
+  }
   /// The contact term, or null.
   const ContactTerm* contact() const { return contact_.get(); }
   ContactTerm* contact() { return contact_.get(); }

@@ -109,6 +109,12 @@ CutUpdate EfgBody::update_for_cuts(double t) {
   return update;
 }
 
+void EfgBody::begin_time_step(const Vector& u) {
+  if (constraints_)
+    constraints_->refresh_alpha(
+        u, WeakBoundaryConditions::VolumePoints{points_.shapes(), points_.weights(), points_.positions()});
+}
+
 void EfgBody::share_points(RankShare share) {
   share_ = share;
   const Index per_cell = points_.schedule().group_size, cells = points_.point_count() / per_cell;

@@ -51,6 +51,8 @@ class EfgBody final : public MeshlessBody,
   /// The rows a growing cut's new pieces touch: the Gauss points', the weak
   /// constraints' boundary points' and, where they changed, the loads.
   CutUpdate update_for_cuts(double t) override;
+  /// Nitsche's alpha from the tangents at u (WeakBoundaryConditions::refresh_alpha).
+  void begin_time_step(const Vector& u) override;
 
   /// The meshless figures, and the Gauss points a cut left a reduced basis.
   void add_figures(std::map<std::string, double>& extras) const override;

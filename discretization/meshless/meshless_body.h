@@ -56,6 +56,8 @@ class MeshlessBody : public DiscreteBody,
     extras["ic_residual_rms"] = constraint_worst_.rms;
     extras["ic_residual_setup_max"] = constraint_setup_.max;
     extras["ic_boundary_points_singular"] = static_cast<double>(domain_.boundary_points_singular());
+    if (const WeakBoundaryConditions* weak = weak_conditions(); weak && weak->largest_alpha_growth() > 1.0)
+      extras["nitsche_alpha_growth_max"] = weak->largest_alpha_growth();
     if (corrected_) {
       extras["ic_residual_uncorrected_max"] = uncorrected_worst_.max;
       extras["ic_residual_uncorrected_rms"] = uncorrected_worst_.rms;

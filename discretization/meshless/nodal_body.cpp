@@ -187,6 +187,13 @@ void NodalBody::share_nodes(RankShare share) {
   touched_nodes_ = touched_node_list(std::move(reached), own_nodes_);
 }
 
+void NodalBody::begin_time_step(const Vector& u) {
+  if (!constraints_) return;
+  const NodeSet& nodes = domain_.nodes();
+  constraints_->refresh_alpha(u,
+                              WeakBoundaryConditions::VolumePoints{domain_.at_nodes(), nodes.volume, nodes.positions});
+}
+
 CutUpdate NodalBody::update_for_cuts(double t) {
   // Every rank brings the whole domain's shape functions up to t (the same
   // on each); the neighbour lists, hence each rank's touched rows, stay.

@@ -74,6 +74,8 @@ class NodalBody final : public MeshlessBody,
   /// The rows the new pieces touch: shape functions, stabilisation pairs and,
   /// where a changed support covers a boundary load, the load vector.
   CutUpdate update_for_cuts(double t) override;
+  /// Nitsche's alpha from the tangents at u (WeakBoundaryConditions::refresh_alpha).
+  void begin_time_step(const Vector& u) override;
 
   /// With meshless.cut_cells: split, the cells at a cut integrated by their
   /// parts: how many, and with how many points.

@@ -276,6 +276,36 @@ std::vector<double> material_diagonal(const ShapeTable& table, std::span<const d
   return diagonal;
 }
 
+std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const MaterialLaw& law,
+                                      const Vector& u, Index node_count) {
+  const int dim = table.dimension;
+  const Index count = table.point_count();
+  // The tangents in parallel (the law's cost), then added up in point order.
+  std::vector<Mat9> tangent(count);
+  ParallelFailure failure;
+#pragma omp parallel for schedule(static)
+  for (Index p = 0; p < count; ++p)
+    failure.run([&] {
+      Mat3 P;
+      law.stress_and_tangent(deformation_gradient(table, p, u), P, tangent[p]);
+    });
+  failure.rethrow_if_failed();
+  std::vector<double> diagonal(dim * node_count, 0.0);
+  for (Index p = 0; p < count; ++p) {
+    auto near = table.neighbours.of(p);
+    const double* g = table.gradients_of(p);
+    const Mat9& A = tangent[p];
+    for (std::size_t k = 0; k < near.size(); ++k)
+      for (int i = 0; i < dim; ++i) {
+        double sum = 0.0;
+        for (int l = 0; l < dim; ++l)
+          for (int m = 0; m < dim; ++m) sum += g[dim * k + l] * A(i + 3 * l, i + 3 * m) * g[dim * k + m];
+        diagonal[dim * near[k] + i] += weights[p] * sum;
+      }
+  }
+  return diagonal;
+}
+
 void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,
                           double density, const BlockSink& sink) {
   const int dim = table.dimension;

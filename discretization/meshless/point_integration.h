@@ -67,6 +67,10 @@ void assemble_material_blocks(const ShapeTable& table, const PointSchedule& sche
 /// per dof (K, i): sum_p w_p (mu |grad psi_K(x_p)|^2 + (lambda + mu) d_i psi_K(x_p)^2).
 std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const Lame& lame,
                                       Index node_count);
+/// The same with the law's tangent at u, per dof (K, i): sum_p w_p sum_lm
+/// d_l psi_K dP_il/dF_im d_m psi_K, the diagonal of K(u)'s material part.
+std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const MaterialLaw& law,
+                                      const Vector& u, Index node_count);
 
 /// The consistent mass rho w_p phi_a phi_b (times the identity) of every point into the sink.
 void assemble_mass_blocks(const ShapeTable& table, const PointSchedule& schedule, std::span<const double> weights,

@@ -70,11 +70,59 @@ void WeakBoundaryConditions::set_nitsche_alpha(const VolumePoints& volume) {
               c.points.weight[q] * (c.projection * traction(E, c.points.normal[q], lame)).squaredNorm();
         }
     }
-  // Per node: its parameters' largest Rayleigh quotient.
+  set_face_alpha(node_quotients(pull, diagonal));
+  for (Constraint& c : constraints_) c.rest_alpha = c.alpha;
+}
+
+void WeakBoundaryConditions::refresh_alpha(const Vector& u, const VolumePoints& volume) {
+  if (!nitsche_ || law_.is_linear() || constraints_.empty()) return;
+  if (u.isZero(0.0)) {
+    for (Constraint& c : constraints_) c.alpha = c.rest_alpha;
+    return;
+  }
+  const int dim = domain_.dimension();
+  const Index N = domain_.nodes().size();
+  const std::vector<double> diagonal = material_diagonal(volume.table, volume.weight, law_, u, N);
+  // As at rest, with the traction of e_i (x) g_k through the tangent at the point:
+  // t_j = sum_lm dP_jl/dF_im g_m n_l.
+  std::vector<double> pull(dim * N, 0.0);
+  for (const Constraint& c : constraints_)
+    for (Index q = 0; q < c.shapes.point_count(); ++q) {
+      Mat3 P;
+      Mat9 A;
+      law_.stress_and_tangent(deformation_gradient(c.shapes, q, u), P, A);
+      auto near = c.shapes.neighbours.of(q);
+      const double* g = c.shapes.gradients_of(q);
+      const Vec3& n = c.points.normal[q];
+      for (std::size_t k = 0; k < near.size(); ++k)
+        for (int i = 0; i < dim; ++i) {
+          Vec3 t = Vec3::Zero();
+          for (int j = 0; j < dim; ++j)
+            for (int l = 0; l < dim; ++l)
+              for (int m = 0; m < dim; ++m) t[j] += A(j + 3 * l, i + 3 * m) * g[dim * k + m] * n[l];
+          pull[dim * near[k] + i] += c.points.weight[q] * (c.projection * t).squaredNorm();
+        }
+    }
+  set_face_alpha(node_quotients(pull, diagonal));
+  for (Constraint& c : constraints_)
+    for (std::size_t q = 0; q < c.alpha.size(); ++q) {
+      c.alpha[q] = std::max(c.alpha[q], c.rest_alpha[q]);
+      if (c.rest_alpha[q] > 0.0) largest_growth_ = std::max(largest_growth_, c.alpha[q] / c.rest_alpha[q]);
+    }
+}
+
+std::vector<double> WeakBoundaryConditions::node_quotients(const std::vector<double>& pull,
+                                                           const std::vector<double>& diagonal) const {
+  const int dim = domain_.dimension();
+  const Index N = domain_.nodes().size();
   std::vector<double> quotient(N, 0.0);
   for (Index k = 0; k < N; ++k)
     for (int i = 0; i < dim; ++i)
       if (diagonal[dim * k + i] > 0.0) quotient[k] = std::max(quotient[k], pull[dim * k + i] / diagonal[dim * k + i]);
+  return quotient;
+}
+
+void WeakBoundaryConditions::set_face_alpha(const std::vector<double>& quotient) {
   for (Constraint& c : constraints_) {
     // The points come face by face, the same number each: a face takes its nodes' largest.
     const Index count = c.shapes.point_count();

@@ -17,7 +17,8 @@
 // points reach, the ratio for its single parameters (v = e_i at k: the
 // traction they make on every constrained point, over K's diagonal at
 // rest, the largest over i), the largest over the face's nodes, times
-// `meshless.nitsche_safety`. That single-parameter quotient is a lower
+// `meshless.nitsche_safety`. A nonlinear law estimates it again at the start
+// of each implicit time step with its tangents there (refresh_alpha). That single-parameter quotient is a lower
 // bound of C, so the safety is measured, not proven. The least that held:
 // on an organ-like body (curved .msh, 4 and 2 mm) 2 for nodal integration
 // and 4-8 for EFG; on the cracked plate 8-16 (EFG); on the tissue-sag slab
@@ -82,8 +83,17 @@ class WeakBoundaryConditions {
   /// recomputed, and Nitsche's alpha estimated again from `volume` (as a body
   /// made with the grown cut would have it).
   void update_for_cuts(const MeshlessDomain& domain, std::span<const char> changed, const VolumePoints& volume);
+  /// Nitsche with a nonlinear law, at the start of a time step from u: alpha
+  /// estimated again with the law's tangents at u (boundary and volume
+  /// points), never below its estimate at rest. The material stiffens as it
+  /// deforms (neo-Hookean under compression), and an alpha set at rest let
+  /// EFG's form go indefinite as the soft block swung under gravity. The
+  /// energy does not change within a step. At u = 0 alpha is the rest one.
+  void refresh_alpha(const Vector& u, const VolumePoints& volume);
 
   double smallest_alpha() const, largest_alpha() const;
+  /// The largest alpha over its rest value refresh_alpha set so far (1: never raised).
+  double largest_alpha_growth() const { return largest_growth_; }
 
  private:
   struct Constraint {
@@ -91,6 +101,7 @@ class WeakBoundaryConditions {
     ShapeTable shapes;
     std::vector<Index> facet;   // per point: the boundary facet it lies on
     std::vector<double> alpha;  // per point (Pa/m)
+    std::vector<double> rest_alpha;  // Nitsche: alpha estimated at rest, per point (Pa/m)
     Mat3 projection = Mat3::Zero();  // Pi: 1 on the constrained components
     Vec3 value = Vec3::Zero();       // u_bar (m)
     SourceLocation where;            // the scene's boundary item
@@ -102,7 +113,12 @@ class WeakBoundaryConditions {
                      std::vector<Mat3>& T) const;
   std::pair<Index, Index> own_points(const Constraint& c) const;
   void set_nitsche_alpha(const VolumePoints& volume);
+  /// Per node: its parameters' largest quotient pull / diagonal (both per dof).
+  std::vector<double> node_quotients(const std::vector<double>& pull, const std::vector<double>& diagonal) const;
+  /// Each face's points take safety_ times the largest quotient of the nodes they reach.
+  void set_face_alpha(const std::vector<double>& quotient);
   double safety_ = 1.0;  // Nitsche's alpha over its estimate
+  double largest_growth_ = 1.0;  // refresh_alpha's largest alpha / rest alpha
 
   const MeshlessDomain& domain_;
   const MaterialLaw& law_;
