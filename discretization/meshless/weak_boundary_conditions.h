@@ -17,9 +17,10 @@
 // points reach, the ratio for its single parameters (v = e_i at k: the
 // traction they make on every constrained point, over K's diagonal at
 // rest, the largest over i), the largest over the face's nodes, times
-// `meshless.nitsche_safety`. A nonlinear law estimates it again at the start
-// of each implicit time step with its tangents there (refresh_alpha). That single-parameter quotient is a lower
-// bound of C, so the safety is measured, not proven. The least that held:
+// `meshless.nitsche_safety`. That single-parameter quotient is a lower
+// bound of C, so the safety is measured, not proven. A nonlinear law
+// estimates it again at the start of each implicit time step with its
+// tangents there (refresh_alpha). The least that held:
 // on an organ-like body (curved .msh, 4 and 2 mm) 2 for nodal integration
 // and 4-8 for EFG; on the cracked plate 8-16 (EFG); on the tissue-sag slab
 // 2-4 (EFG) and above 16 (nodal). The default is 32 (problem/scene.h).
