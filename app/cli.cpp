@@ -134,7 +134,10 @@ int run_command_line(const std::vector<std::string>& args) {
     options.quiet = a.quiet || ranks.rank != 0;
     options.ranks = ranks;
     RunOutcome outcome = run_scene(scene, options);
-    if (!options.quiet) std::cerr << "kerf: results in " << outcome.directory << "\n";
+    if (!options.quiet) {
+      for (const std::string& note : outcome.report.notes) std::cerr << "kerf: note: " << note << "\n";
+      std::cerr << "kerf: results in " << outcome.directory << "\n";
+    }
     return 0;
   } catch (const std::exception& e) {
     // The summary says "error" (run_scene wrote it); the other ranks must not wait for this one.

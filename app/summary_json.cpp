@@ -93,6 +93,7 @@ void write_report(const RunReport& report, json& summary) {
                        {"cut_update_ms", counted_milliseconds(report.cut_update_seconds)},
                        {"cut_refresh_ms", counted_milliseconds(report.cut_refresh_seconds)}};
   summary["stages"] = report.stages;
+  summary["notes"] = report.notes;
   summary["solver"] = solver_counters(report);
 }
 

@@ -80,6 +80,9 @@ struct RunReport {
   std::vector<double> cut_update_seconds;   // per growth of a cut: the body's update (enrichment, shapes)
   std::vector<double> cut_refresh_seconds;  // per growth: the stepper re-reading mass, forces, factors
   std::map<std::string, double> extras;     // method-specific figures (meshless: mls_condition_*)
+  /// What the run did differently from the scene's words and why (a mesh
+  /// file's order raised or lowered to the element asked): summary "notes".
+  std::vector<std::string> notes;
 
   void add_stage(const std::string& stage) {
     if (std::find(stages.begin(), stages.end(), stage) == stages.end()) stages.push_back(stage);

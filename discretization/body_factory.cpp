@@ -16,8 +16,9 @@
 namespace kerf {
 namespace {
 
-/// The mesh FEM uses: the scene's mesh file, or gmsh on the box at `size`,
-/// conforming to and opened along `cuts`. Made on rank 0 alone under mpirun.
+/// The mesh of the scene's box (gmsh at `size`, of cells of `order`,
+/// conforming to and opened along `cuts`), or its mesh file as it stands.
+/// Made on rank 0 alone under mpirun.
 Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
   return mesh_from_first_rank([&] {
     if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
@@ -31,6 +32,31 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
     for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
     return mesh_box(request);
   });
+}
+
+/// FEM's mesh: its cells are of the element the scene asks, never silently
+/// another. A linear mesh file asked for quadratic cells is raised by gmsh
+/// (mid-edge nodes on its straight edges); a quadratic one asked for linear
+/// cells keeps its corners (edges straightened). Either is said in the notes.
+Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
+  const ElementType element = scene.discretization.fem.element;
+  const int order = element_kind(element).order;
+  if (scene.box) return make_mesh(scene, order, scene.discretization.fem.size, std::move(cuts));
+  int file_order = order;
+  Mesh mesh = mesh_from_first_rank([&] {
+    return read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
+                    &file_order);
+  });
+  const std::string asked = std::string("discretization.fem.element: ") + to_string(element) + " on the mesh file " +
+                            scene.mesh_file + ", which holds " + (file_order == 1 ? "linear" : "quadratic") +
+                            " cells: ";
+  if (order == 2 && file_order == 1)
+    report.notes.push_back(asked + "gmsh raised them to second order (mid-edge nodes on their straight edges)");
+  if (order == 1 && mesh.order == 2) {
+    mesh = corner_mesh(mesh);
+    report.notes.push_back(asked + "their corner nodes were taken as linear cells (curved edges straightened)");
+  }
+  return mesh;
 }
 
 /// Under MPI, a body computes only its rank's cells, nodes or Gauss points
@@ -84,7 +110,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
-  Mesh mesh = make_mesh(scene, fem_order(scene), scene.discretization.fem.size, cuts->fem_pieces(FemCut::remesh, time));
+  Mesh mesh = make_fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report);
   report.add_stage("mesh");
   if (!removed.empty()) {
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);

@@ -41,15 +41,21 @@ void become_a_disposable_child() {
   ::prctl(PR_SET_PDEATHSIG, SIGKILL);
 }
 
-[[noreturn]] void child_read(const std::string& path, int dimension, int fd) {
+[[noreturn]] void child_read(const std::string& path, int dimension, MshOrder order, int fd) {
   become_a_disposable_child();
   std::string error;
   Mesh mesh;
+  int file_order = 0;
   bool read = false;
   try {
     ensure_gmsh_initialized();
     gmsh::open(path);
     extract_gmsh_mesh(dimension, path, mesh);
+    file_order = mesh.order;
+    if (order == MshOrder::second && mesh.order == 1) {
+      gmsh::model::mesh::setOrder(2);
+      extract_gmsh_mesh(dimension, path, mesh);
+    }
     read = true;
   } catch (const std::exception& e) {
     error = e.what();
@@ -67,8 +73,8 @@ void become_a_disposable_child() {
     ::_exit(0);
   }
   char status = ok_status;
-  std::int64_t header[4] = {mesh.dimension, mesh.order, static_cast<std::int64_t>(mesh.nodes.size()),
-                            static_cast<std::int64_t>(mesh.cells.size())};
+  std::int64_t header[5] = {mesh.dimension, mesh.order, static_cast<std::int64_t>(mesh.nodes.size()),
+                            static_cast<std::int64_t>(mesh.cells.size()), file_order};
   write_all(fd, &status, 1);
   write_all(fd, header, sizeof header);
   write_all(fd, mesh.nodes.data(), mesh.nodes.size() * sizeof(Vec3));
@@ -118,7 +124,7 @@ void precheck(const std::string& path) {
 
 }  // namespace
 
-Mesh read_msh(const std::string& path, int dimension) {
+Mesh read_msh(const std::string& path, int dimension, MshOrder order, int* file_order) {
   precheck(path);
   int fds[2];
   KERF_CHECK(::pipe(fds) == 0, "cannot create a pipe to read ", path, ": ", std::strerror(errno));
@@ -127,7 +133,7 @@ Mesh read_msh(const std::string& path, int dimension) {
   KERF_CHECK(pid >= 0, "cannot fork to read ", path, ": ", std::strerror(errno));
   if (pid == 0) {
     ::close(fds[0]);
-    child_read(path, dimension, fds[1]);
+    child_read(path, dimension, order, fds[1]);
   }
   ::close(fds[1]);
   const std::string message = answer_within_deadline(fds[0], pid, path);
@@ -141,7 +147,7 @@ Mesh read_msh(const std::string& path, int dimension) {
   KERF_CHECK(WIFEXITED(status) && WEXITSTATUS(status) == 0 && !message.empty(), path,
              ": the gmsh reader process failed (exit status ", WEXITSTATUS(status), ")");
   if (message[0] == error_status) throw Error(path + ": gmsh could not read the mesh: " + message.substr(1));
-  std::int64_t header[4];
+  std::int64_t header[5];
   KERF_CHECK(message[0] == ok_status && message.size() >= 1 + sizeof header, path,
              ": the gmsh reader process sent a truncated answer");
   std::memcpy(header, message.data() + 1, sizeof header);
@@ -157,6 +163,7 @@ Mesh read_msh(const std::string& path, int dimension) {
   const char* p = message.data() + 1 + sizeof header;
   std::memcpy(static_cast<void*>(mesh.nodes.data()), p, node_bytes);
   std::memcpy(mesh.cells.data(), p + node_bytes, cell_bytes);
+  if (file_order) *file_order = static_cast<int>(header[4]);
   return mesh;
 }
 

@@ -8,6 +8,12 @@
 
 namespace kerf {
 
-Mesh read_msh(const std::string& path, int dimension);
+/// The cells' order: the file's, or second order (gmsh adds the mid-edge
+/// nodes of a linear file, on its straight edges; a quadratic file is kept).
+enum class MshOrder { as_in_file, second };
+
+/// `file_order`, when given, receives the order the file itself holds.
+Mesh read_msh(const std::string& path, int dimension, MshOrder order = MshOrder::as_in_file,
+              int* file_order = nullptr);
 
 }  // namespace kerf

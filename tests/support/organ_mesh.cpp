@@ -9,7 +9,7 @@
 
 namespace kerf::testing {
 
-void write_organ_mesh(const std::string& path, double size_left, double size_right) {
+void write_organ_mesh(const std::string& path, double size_left, double size_right, int order) {
   SingleThreadScope serial;  // the same mesh every run
   ensure_gmsh_initialized();
   gmsh::clear();
@@ -32,6 +32,7 @@ void write_organ_mesh(const std::string& path, double size_left, double size_rig
       grading, "F", std::to_string(size_left) + " + " + std::to_string(slope) + " * (x + " + std::to_string(a) + ")");
   gmsh::model::mesh::field::setAsBackgroundMesh(grading);
   gmsh::model::mesh::generate(3);
+  if (order == 2) gmsh::model::mesh::setOrder(2);
   gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
   gmsh::option::setNumber("Mesh.Binary", 0);
   gmsh::write(path);

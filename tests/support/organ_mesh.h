@@ -7,8 +7,9 @@
 namespace kerf::testing {
 
 /// Writes the organ's mesh to `path` (gmsh 4.1 text): edge length `size_left`
-/// (m) at x = -35 mm growing linearly to `size_right` at x = +35 mm.
-void write_organ_mesh(const std::string& path, double size_left, double size_right);
+/// (m) at x = -35 mm growing linearly to `size_right` at x = +35 mm. With
+/// `order` 2 the same cells gain mid-edge nodes on the curved surface.
+void write_organ_mesh(const std::string& path, double size_left, double size_right, int order = 1);
 
 /// The organ graded 3 to 6 mm, written once per process into a folder of the
 /// process's own (ctest runs tests two at a time, each in its process, and
