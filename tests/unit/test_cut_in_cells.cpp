@@ -8,43 +8,14 @@
 #include <numeric>
 
 #include "geometry/cut_in_cells.h"
+#include "support/kuhn_mesh.h"
 
 namespace kerf {
 namespace {
 
-/// [0,2]^3 as 8 unit cubes of 6 Kuhn tetrahedra each: the planes x, y, z = 1
-/// are made of cell faces and hold nodes.
-Mesh kuhn_cubes() {
-  Mesh mesh;
-  auto node = [](int i, int j, int k) { return static_cast<Index>(i + 3 * j + 9 * k); };
-  for (int k = 0; k < 3; ++k)
-    for (int j = 0; j < 3; ++j)
-      for (int i = 0; i < 3; ++i) mesh.nodes.emplace_back(i, j, k);
-  const int paths[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
-  for (int k = 0; k < 2; ++k)
-    for (int j = 0; j < 2; ++j)
-      for (int i = 0; i < 2; ++i)
-        for (const auto& path : paths) {  // the tet along one monotone path of the cube's edges
-          int c[3] = {i, j, k};
-          mesh.cells.push_back(node(c[0], c[1], c[2]));
-          for (int axis : path) {
-            ++c[axis];
-            mesh.cells.push_back(node(c[0], c[1], c[2]));
-          }
-        }
-  orient_cells(mesh);
-  return mesh;
-}
+Mesh kuhn_cubes() { return testing::kuhn_cubes(2, 1.0); }  // the planes x, y, z = 1 hold nodes
 
-CutPiece piece(const Vec3& a, const Vec3& b, const Vec3& c) {
-  CutPiece p;
-  p.corner = {a, b, c};
-  const Vec3 n = (b - a).cross(c - a);
-  p.normal = n.normalized();
-  p.size = 0.5 * n.norm();
-  p.centre = (a + b + c) / 3.0;
-  return p;
-}
+CutPiece piece(const Vec3& a, const Vec3& b, const Vec3& c) { return testing::triangle_piece(a, b, c); }
 
 std::vector<Index> every_cell(const Mesh& mesh) {
   std::vector<Index> cells(mesh.cell_count());
