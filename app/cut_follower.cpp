@@ -3,6 +3,7 @@
 #include "core/check.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
+#include "discretization/fem/fem_body.h"
 #include "discretization/state_transfer.h"
 
 namespace kerf {
@@ -27,6 +28,8 @@ bool CutFollower::follow(RunParts& run, SolverState& state, RunReport& report) {
   run.probes.reset();  // they refer to the body as it was
   if (auto* in_place = capability<CutsInShapeFunctions>(*run.body))
     update_rows(*in_place, run, state, report);
+  else if (const auto* splitting = capability<CutsBySplitting>(*run.body); splitting && cuts_->grows_by_splitting())
+    split_further(*splitting, run, state, report);
   else
     rebuild(run, state, report);
   return true;
@@ -55,15 +58,39 @@ void CutFollower::rebuild(RunParts& run, SolverState& state, RunReport& report) 
   state.v = transfer(state.v);
   state.a = transfer(state.a);
   const double updated = now_seconds();
+  replace_body(std::move(body), run, state, report);
+  record_growth(report, start, updated, now_seconds());
+  report.cuts.removed_cells += rebuild_report.cuts.removed_cells;
+  report.cuts.remeshes += 1;
+  report.cuts.updated_nodes += run.body->node_count();
+}
+
+void CutFollower::split_further(const CutsBySplitting& splitting, RunParts& run, SolverState& state,
+                                RunReport& report) const {
+  const double start = now_seconds();
+  std::unique_ptr<DiscreteBody> body = splitting.split_along(scene_, cuts_->fem_pieces(FemCut::split, state.t));
+  state.u = splitting.carried_to(*body, state.u);
+  state.v = splitting.carried_to(*body, state.v);
+  state.a = splitting.carried_to(*body, state.a);
+  const double updated = now_seconds();
+  const Index added = body->node_count() - run.body->node_count();
+  replace_body(std::move(body), run, state, report);
+  record_growth(report, start, updated, now_seconds());
+  report.cuts.updated_nodes += added;
+  if (const auto* fem = dynamic_cast<const FemBody*>(run.body.get()); fem && fem->split()) {
+    report.cuts.split_cells = fem->split()->separated_cells;
+    report.cuts.duplicated_nodes = fem->split()->duplicated_nodes;
+    report.cuts.dropped_volume = fem->split()->dropped_measure;
+  }
+}
+
+void CutFollower::replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state,
+                               RunReport& report) const {
   run.stepper.reset();
   run.mechanics = std::make_unique<MechanicalSystem>(*body, scene_, report);
   run.stepper = make_stepper(*run.mechanics, scene_, report);
   run.stepper->discretization_changed(state);
   run.body = std::move(body);
-  record_growth(report, start, updated, now_seconds());
-  report.cuts.removed_cells += rebuild_report.cuts.removed_cells;
-  report.cuts.remeshes += 1;
-  report.cuts.updated_nodes += run.body->node_count();
 }
 
 }  // namespace kerf

@@ -5,7 +5,11 @@
 //     integration): it recomputes the rows the new pieces touch in place, the
 //     dofs stay, and the stepper re-reads what it keeps (mass, forces,
 //     factors); or
-//   - it does not (FEM): a new body is built with the cuts as they stand
+//   - its cuts split its cells (FEM, fem: split): the same mesh is split
+//     along the pieces as they stand, the state copied exactly onto the new
+//     copies (nothing interpolated), and the mechanical system and stepper
+//     are made again on it; or
+//   - neither (FEM): a new body is built with the cuts as they stand
 //     (meshed in, or more cells removed), the state (u, v, a) is carried onto
 //     its mesh, and the mechanical system and stepper are made again on it.
 // Each growth is timed (cut_update_ms: the body's update; cut_refresh_ms: the
@@ -26,6 +30,9 @@ class CutFollower {
  private:
   void update_rows(CutsInShapeFunctions& body, RunParts& run, SolverState& state, RunReport& report) const;
   void rebuild(RunParts& run, SolverState& state, RunReport& report) const;
+  void split_further(const CutsBySplitting& body, RunParts& run, SolverState& state, RunReport& report) const;
+  /// The mechanical system and stepper made again on the new body, which takes the run's place.
+  void replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state, RunReport& report) const;
 
   const Scene& scene_;
   SharedCuts cuts_;

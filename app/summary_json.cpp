@@ -46,7 +46,10 @@ json solver_counters(const RunReport& report) {
               {"cut_remeshes", c.remeshes},
               {"cut_removed_cells", c.removed_cells},
               {"cut_updated_nodes", c.updated_nodes},
-              {"cut_updated_points", c.updated_points}};
+              {"cut_updated_points", c.updated_points},
+              {"cut_split_cells", c.split_cells},
+              {"cut_duplicated_nodes", c.duplicated_nodes},
+              {"cut_dropped_volume", c.dropped_volume}};
   if (s.smallest_increment) out["smallest_increment"] = *s.smallest_increment;
   if (s.critical_dt_s) out["critical_dt_s"] = *s.critical_dt_s;
   if (s.critical_dt_element_bound_s) out["critical_dt_element_bound_s"] = *s.critical_dt_element_bound_s;

@@ -65,6 +65,10 @@ struct CutCounters {
   long removed_cells = 0;   // cells deleted (fem: remove), over every mesh built
   long updated_nodes = 0;   // nodes whose shape functions changed, summed over the growths
   long updated_points = 0;  // integration points recomputed, summed over the growths
+  // fem: split, in the body as it stands:
+  long split_cells = 0;        // cells the cut separates (each replaced by one copy per side)
+  long duplicated_nodes = 0;   // nodes added as copies
+  double dropped_volume = 0.0; // m^3 (2D: m^2) of fragments too small to keep (split_elements.md 3.4)
 };
 
 struct RunReport {

@@ -7,6 +7,7 @@
 //   SurfaceSampling        fem, efg, nodal   boundary quadrature points (contact)
 //   WeakConstraints        efg               reactions of weakly imposed constraints
 //   CutsInShapeFunctions   nodal, efg        a cut's new piece updates rows in place
+//   CutsBySplitting        fem               a cut's new piece splits the cells it separates
 //   EnrichmentLattices     efg, nodal        the Enrichment Grids' phi for ParaView
 //   DiscretizationFigures  efg, nodal        MLS conditioning for the summary
 //   ElementStepBound       fem               a cheap safe explicit step
@@ -14,14 +15,19 @@
 //   MatrixAssembly         fem               K written straight into a CSR matrix
 //   PartitionedAssembly    fem               under MPI, only this rank's cells
 #include <map>
+#include <memory>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "discretization/discrete_body.h"
+#include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
 
 namespace kerf {
+
+struct Scene;
 
 /// A quadrature point on the boundary, for surface terms that follow the
 /// deformation (contact): u(position) = interpolation applied to the nodal values.
@@ -68,6 +74,19 @@ class CutsInShapeFunctions {
   /// affect are rebuilt in place (the dofs and the sparsity stay, so the state
   /// carries over unchanged).
   virtual CutUpdate update_for_cuts(double t) = 0;
+};
+
+class CutsBySplitting {
+ public:
+  virtual ~CutsBySplitting() = default;
+  /// The same body on the same mesh as read, its cells split along `pieces`
+  /// (fem: split): its nodes are this one's (new copies after them), so a
+  /// state carries over exactly.
+  virtual std::unique_ptr<DiscreteBody> split_along(const Scene& scene, std::span<const CutPiece> pieces) const = 0;
+  /// `field` (over this body's dofs) on `next` (made by split_along): each
+  /// node of a copy takes the value of the node it had in the copy of the
+  /// same cell that holds its fragment. Nothing is interpolated.
+  virtual Vector carried_to(const DiscreteBody& next, const Vector& field) const = 0;
 };
 
 class EnrichmentLattices {

@@ -116,7 +116,15 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
-  return std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene, *cuts));
+  const std::vector<CutPiece> split = cuts->fem_pieces(FemCut::split, time);
+  auto body = std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene, *cuts), split);
+  if (const CellSplit* s = body->split()) {
+    report.cuts.split_cells = s->separated_cells;
+    report.cuts.duplicated_nodes = s->duplicated_nodes;
+    report.cuts.dropped_volume = s->dropped_measure;
+    report.add_stage("cells split");
+  }
+  return body;
 }
 
 }  // namespace kerf

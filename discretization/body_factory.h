@@ -10,7 +10,8 @@
 namespace kerf {
 
 /// FEM takes the cuts' pieces present at `time` (s): those meshed in
-/// (`fem: remesh`) or whose cells are removed (`fem: remove`); the meshless
+/// (`fem: remesh`), whose cells are removed (`fem: remove`) or split
+/// (`fem: split`); the meshless
 /// methods enrich their weights with the cuts as they grow. Contact is not
 /// the body's: solvers/mechanical_system.h adds it.
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time = 0.0);

@@ -18,6 +18,16 @@ bool CutTimeline::grows() const {
   return std::any_of(surfaces_.begin(), surfaces_.end(), [](const CutSurface& s) { return s.appears.back() > 0.0; });
 }
 
+bool CutTimeline::grows_by_splitting() const {
+  bool any = false;
+  for (std::size_t c = 0; c < cuts_.size(); ++c) {
+    if (surfaces_[c].appears.back() <= 0.0) continue;
+    if (cuts_[c].fem != FemCut::split) return false;
+    any = true;
+  }
+  return any;
+}
+
 std::vector<CutPiece> CutTimeline::fem_pieces(FemCut way, double t) const {
   std::vector<CutPiece> out;
   for (std::size_t c = 0; c < cuts_.size(); ++c)

@@ -27,6 +27,9 @@ class CutTimeline {
   bool grows() const;
   /// The pieces present at time t of the cuts FEM follows in `way`.
   std::vector<CutPiece> fem_pieces(FemCut way, double t) const;
+  /// Does every cut that grows split FEM's cells (fem: split)? Then a growth
+  /// splits the same mesh further instead of meshing the body anew.
+  bool grows_by_splitting() const;
 
  private:
   std::vector<Cut> cuts_;

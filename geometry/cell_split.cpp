@@ -53,6 +53,8 @@ class CutSides {
  public:
   CutSides(const Mesh& mesh, std::span<const CutPiece> pieces, const NodeCells& around, double snap)
       : mesh_(mesh), pieces_(pieces), side_(mesh.node_count(), 1) {
+    for (const CutPiece& p : pieces_)
+      facets_.push_back(mesh.dimension == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner);
     find_candidates();
     classify_corners(around, snap);
   }
@@ -60,25 +62,21 @@ class CutSides {
   int side(Index node) const { return side_[node]; }
   void set_side(Index node, int s) { side_[node] = s; }
   /// Where the edge between nodes a and b (of opposite sides) crosses the cut,
-  /// as a point; nullopt when it passes beside it (beyond a front).
-  std::optional<Vec3> crossing(Index a, Index b) {
-    const std::uint64_t key = edge_key(a, b);
-    auto found = crossings_.find(key);
-    if (found == crossings_.end()) {
-      const Index p = std::min(a, b), q = std::max(a, b);
-      double t = -1.0;
-      for (const CutPiece& piece : pieces_)
-        if ((t = crossing_on_piece(mesh_.dimension, piece, mesh_.nodes[p], mesh_.nodes[q])) >= 0.0) break;
-      found = crossings_.emplace(key, t).first;
-    }
-    if (found->second < 0.0) return std::nullopt;
+  /// as a point; nullopt when it passes beside it (beyond a front). With
+  /// `extended`, an edge beside the cut crosses the plane of the piece nearest
+  /// its middle, where that plane separates its ends (the over-cut front).
+  std::optional<Vec3> crossing(Index a, Index b, bool extended = false) {
+    const EdgeCrossing& e = edge_crossing(a, b);
+    const double t = e.on_cut >= 0.0 ? e.on_cut : extended ? e.on_plane : -1.0;
+    if (t < 0.0) return std::nullopt;
     const Index p = std::min(a, b), q = std::max(a, b);
-    return mesh_.nodes[p] + found->second * (mesh_.nodes[q] - mesh_.nodes[p]);
+    return mesh_.nodes[p] + t * (mesh_.nodes[q] - mesh_.nodes[p]);
   }
   /// The crossing's parameter from a to b (nullopt: none).
-  std::optional<double> crossing_parameter(Index a, Index b) {
-    if (!crossing(a, b)) return std::nullopt;
-    const double t = crossings_.at(edge_key(a, b));
+  std::optional<double> crossing_parameter(Index a, Index b, bool extended = false) {
+    if (!crossing(a, b, extended)) return std::nullopt;
+    const EdgeCrossing& e = edge_crossing(a, b);
+    const double t = e.on_cut >= 0.0 ? e.on_cut : e.on_plane;
     return a < b ? t : 1.0 - t;
   }
 
@@ -116,21 +114,14 @@ class CutSides {
   void classify_corners(const NodeCells& around, double snap) {
     const int corners = mesh_.dimension + 1;
     std::vector<char> done(mesh_.node_count(), 0);
-    std::vector<std::array<Vec3, 3>> facets;
-    for (const CutPiece& p : pieces_)
-      facets.push_back(mesh_.dimension == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner);
     for (Index c : candidates_)
       for (int k = 0; k < corners; ++k) {
         const Index n = mesh_.cell(c)[k];
         if (done[n]) continue;
         done[n] = 1;
         const Vec3& x = mesh_.nodes[n];
-        double nearest = std::numeric_limits<double>::infinity();
-        std::size_t which = 0;
-        for (std::size_t f = 0; f < facets.size(); ++f) {
-          const double d = distance_to_facets(x, std::span(&facets[f], 1));
-          if (d < nearest) nearest = d, which = f;
-        }
+        double nearest = 0.0;
+        const std::size_t which = nearest_piece(x, &nearest);
         // A node on the cut to round-off lies on it whatever the snap: no side is its own.
         if (nearest <= std::max(snap, 1e-10) * shortest_edge(around, n)) {
           side_[n] = 0;
@@ -154,7 +145,37 @@ class CutSides {
   std::span<const CutPiece> pieces_;
   std::vector<int> side_;
   std::vector<Index> candidates_;
-  std::unordered_map<std::uint64_t, double> crossings_;  // edge -> t from its lower node, -1: none
+  /// Parameters from the edge's lower node; -1: none.
+  struct EdgeCrossing {
+    double on_cut = -1.0, on_plane = -1.0;
+  };
+  const EdgeCrossing& edge_crossing(Index a, Index b) {
+    auto found = crossings_.find(edge_key(a, b));
+    if (found != crossings_.end()) return found->second;
+    const Index p = std::min(a, b), q = std::max(a, b);
+    const Vec3 &xp = mesh_.nodes[p], &xq = mesh_.nodes[q];
+    EdgeCrossing e;
+    for (const CutPiece& piece : pieces_)
+      if ((e.on_cut = crossing_on_piece(mesh_.dimension, piece, xp, xq)) >= 0.0) break;
+    const CutPiece& nearest = pieces_[nearest_piece(0.5 * (xp + xq))];
+    const double dp = nearest.normal.dot(xp - nearest.corner[0]), dq = nearest.normal.dot(xq - nearest.corner[0]);
+    if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) e.on_plane = dp / (dp - dq);
+    return crossings_.emplace(edge_key(a, b), e).first->second;
+  }
+  /// The piece nearest x, and its distance.
+  std::size_t nearest_piece(const Vec3& x, double* distance = nullptr) const {
+    double nearest = std::numeric_limits<double>::infinity();
+    std::size_t which = 0;
+    for (std::size_t f = 0; f < facets_.size(); ++f) {
+      const double d = distance_to_facets(x, std::span(&facets_[f], 1));
+      if (d < nearest) nearest = d, which = f;
+    }
+    if (distance) *distance = nearest;
+    return which;
+  }
+
+  std::vector<std::array<Vec3, 3>> facets_;  // the pieces as facets (2D: a segment's end repeated)
+  std::unordered_map<std::uint64_t, EdgeCrossing> crossings_;
 };
 
 /// Union-find over the copies' node slots (copy * nodes per cell + local node).
@@ -235,11 +256,19 @@ void Splitter::make_copies() {
       plus |= side[k] > 0;
       minus |= side[k] < 0;
     }
-    bool separated = candidate[c] && plus && minus;
-    for (int a = 0; a < corners && separated; ++a)
-      for (int b = a + 1; b < corners && separated; ++b)
-        if (side[a] * side[b] < 0) separated = sides_.crossing(cell[a], cell[b]).has_value();
-    if (!separated) {
+    // Separated: every edge between the sides crosses the cut. Over-cut, a
+    // front cell the cut enters is also split along its nearest piece's plane.
+    bool entered = false, spanned = true, extended = true;
+    for (int a = 0; a < corners && candidate[c] && plus && minus; ++a)
+      for (int b = a + 1; b < corners; ++b) {
+        if (side[a] * side[b] >= 0) continue;
+        const bool crosses = sides_.crossing(cell[a], cell[b]).has_value();
+        entered |= crosses;
+        spanned &= crosses;
+        extended &= crosses || sides_.crossing(cell[a], cell[b], true).has_value();
+      }
+    const bool beyond_front = !spanned && options_.over_cut && entered && extended;
+    if (!(candidate[c] && plus && minus && (spanned || beyond_front))) {
       copies_.push_back({c, 0, {}});
       copy_start_.push_back(static_cast<Index>(copies_.size()));
       continue;
@@ -247,7 +276,7 @@ void Splitter::make_copies() {
     separated_[c] = 1;
     ++out_.separated_cells;
     const CellFragments parts =
-        cell_fragments(dim, x, side, [&](int a, int b) { return *sides_.crossing(cell[a], cell[b]); });
+        cell_fragments(dim, x, side, [&](int a, int b) { return *sides_.crossing(cell[a], cell[b], beyond_front); });
     const double measure = cell_measure(mesh_, c);
     std::array<double, 2> fraction{};
     for (int s = 0; s < 2; ++s)
@@ -282,7 +311,7 @@ void Splitter::side_mid_edge_nodes() {
       const int sa = sides_.side(a), sb = sides_.side(b);
       int s = sa != 0 ? sa : sb;
       if (sa * sb < 0)
-        if (const auto t = sides_.crossing_parameter(a, b)) s = *t > 0.5 ? sa : *t < 0.5 ? sb : 0;
+        if (const auto t = sides_.crossing_parameter(a, b, options_.over_cut)) s = *t > 0.5 ? sa : *t < 0.5 ? sb : 0;
       sides_.set_side(m, s);
     }
   }
@@ -346,6 +375,7 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
   out.mesh.nodes = mesh_.nodes;
   out.origin.resize(mesh_.node_count());
   std::iota(out.origin.begin(), out.origin.end(), 0);
+  out.phantom.assign(mesh_.node_count(), 0);
   // Each involved node's groups of slots: the one where it is material (on
   // the cut: the + side's, then the - side's) keeps its id, the others are new.
   std::unordered_map<std::size_t, Index> node_of_group;
@@ -371,6 +401,7 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
         id = static_cast<Index>(out.mesh.nodes.size());
         out.mesh.nodes.push_back(mesh_.nodes[n]);
         out.origin.push_back(n);
+        out.phantom.push_back(!(groups[k].rank & 4) && sides_.side(n) != 0);
         ++out.duplicated_nodes;
       }
       node_of_group[groups[k].root] = id;

@@ -28,6 +28,10 @@ namespace kerf {
 struct SplitOptions {
   double snap = 0.05;          // of a node's shortest edge: nodes this near the cut lie on it
   double min_fraction = 1e-4;  // a fragment under this share of its cell is dropped
+  /// Over-cut: a cell the cut enters but does not span (its front passes
+  /// through it) is split too, along the plane of the piece nearest each of
+  /// its edges, so the jump reaches past the front instead of lagging behind.
+  bool over_cut = false;
 };
 
 struct CellSplit {
@@ -35,6 +39,9 @@ struct CellSplit {
   /// (same ids, same positions), then the duplicates.
   Mesh mesh;
   std::vector<Index> origin;          // per node: the original node it copies (itself for originals)
+  /// per node: a copy off its own side (it only extends a copy's field
+  /// across the cut, as XFEM's phantom nodes): boundary conditions skip it.
+  std::vector<char> phantom;
   std::vector<Index> parent;          // per cell: its cell in the original mesh
   std::vector<Index> fragment_start;  // per cell, + 1: its sub-simplices in fragment_points
   /// (dim + 1) reference coordinates (the parent's, corners' affine map) per

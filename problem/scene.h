@@ -58,7 +58,11 @@ enum class MassKind { lumped, consistent };
 enum class TangentKind { exact, definite, automatic };
 enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
 enum class GridLookup { exact, interpolated };
-enum class FemCut { remesh, remove };
+enum class FemCut { remesh, remove, split };
+/// fem: split's cells that the cut's front passes through: left whole (the
+/// papers' rule: the jump ends about a cell behind the front), or split along
+/// the nearest piece's plane (the jump reaches about a cell past it).
+enum class SplitFront { lag, over };
 enum class ProbeField { displacement, reaction, indentation, contact_force, energy };
 
 struct BoundaryCondition {
@@ -91,6 +95,11 @@ struct FemOptions {
   ElementType element = ElementType::tet4;
   double size = 0.0025;  // m
   FemVolumetric volumetric = FemVolumetric::element;
+  SplitFront split_front = SplitFront::lag;
+  /// fem: split: nodes within this share of their shortest edge of the cut
+  /// lie on it (no sliver thinner than about that); 0: the cut exactly as
+  /// given, no node moved and no fragment dropped however thin.
+  double split_snap = 0.05;
 };
 
 struct MeshlessOptions {
@@ -273,7 +282,8 @@ KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
 KERF_ENUM_NAMES(TangentKind, "exact", "definite", "auto");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
 KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
-KERF_ENUM_NAMES(FemCut, "remesh", "remove");
+KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
+KERF_ENUM_NAMES(SplitFront, "lag", "over");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
 

@@ -86,7 +86,9 @@ json scene_to_json(const Scene& s) {
   for (const RefineRegion& r : d.refine) refine.push_back({{"box", box_json(r.box, dim)}, {"size", r.size}});
   j["discretization"] = {
       {"method", to_string(d.method)},
-      {"fem", {{"element", to_string(d.fem.element)}, {"size", d.fem.size}, {"volumetric", to_string(d.fem.volumetric)}}},
+      {"fem", {{"element", to_string(d.fem.element)}, {"size", d.fem.size}, {"volumetric", to_string(d.fem.volumetric)},
+               {"split_front", to_string(d.fem.split_front)},
+               {"split_snap", d.fem.split_snap}}},
       {"refine", refine},
       {"meshless",
        {{"nodes", to_string(ml.nodes)},

@@ -7,6 +7,7 @@
 
 #include "core/check.h"
 #include "core/parallel_failure.h"
+#include "discretization/fem/fragment_quadrature.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
 #include "discretization/prescribed_dofs.h"
@@ -48,31 +49,50 @@ Mesh ordered_for_locality(Mesh mesh) {
   order_for_locality(mesh);
   return mesh;
 }
+
+SplitOptions split_options(const Scene& scene) {
+  SplitOptions options;
+  options.snap = scene.discretization.fem.split_snap;
+  if (options.snap == 0.0) options.min_fraction = 0.0;  // the cut exactly as given
+  options.over_cut = scene.discretization.fem.split_front == SplitFront::over;
+  return options;
+}
 }  // namespace
 
-FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share)
-    : mesh_(ordered_for_locality(std::move(mesh))),
-      facets_(boundary_facets(mesh_)),
-      on_boundary_(boundary_node_flags(mesh_, facets_)),
-      locator_(mesh_),
+FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
+    : FemBody(Ordered{}, scene, ordered_for_locality(std::move(mesh)), share, split_along) {}
+
+FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
+    : original_(std::move(mesh)),
+      split_(split_along.empty() ? std::nullopt : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
+      mesh_(split_ ? std::move(split_->mesh) : std::move(original_)),
+      facets_(boundary_facets(outline())),
+      on_boundary_(boundary_node_flags(outline(), facets_)),
+      locator_(outline()),
       law_(scene.material),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
+  if (split_) {
+    copies_start_.assign(original_.cell_count() + 1, 0);
+    for (Index p : split_->parent) ++copies_start_[p + 1];
+    for (Index p = 0; p < original_.cell_count(); ++p) copies_start_[p + 1] += copies_start_[p];
+  }
   share_cells(share);
   auto box = bounding_box(mesh_);
   domain_size_ = (box[1] - box[0]).norm();
   npc_ = mesh_.nodes_per_cell();
   mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
-  QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
-  nqp_ = static_cast<int>(rule.points.size());
+  const QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
   const Index C = mesh_.cell_count();
-  grad_.resize(static_cast<std::size_t>(C) * nqp_ * npc_ * dim);
-  wdet_.resize(static_cast<std::size_t>(C) * nqp_);
+  point_start_.assign(1, 0);
+  grad_.reserve(static_cast<std::size_t>(C) * rule.points.size() * npc_ * dim);
+  wdet_.reserve(static_cast<std::size_t>(C) * rule.points.size());
   std::vector<double> dN(npc_ * dim);
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
-    for (int q = 0; q < nqp_; ++q) {
-      simplex_shape_gradients(dim, mesh_.order, rule.points[q], dN.data());
+    const QuadratureRule cell = cell_rule(c, rule, /*constant_integrand=*/mesh_.order == 1);
+    for (std::size_t q = 0; q < cell.points.size(); ++q) {
+      simplex_shape_gradients(dim, mesh_.order, cell.points[q], dN.data());
       Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);  // dX/dxi
       for (int a = 0; a < npc_; ++a)
         for (int i = 0; i < dim; ++i)
@@ -81,19 +101,72 @@ FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share)
       KERF_CHECK(det > 0.0, "mesh cell ", c, " is inverted or degenerate (det J = ", det,
                  " at quadrature point ", q, "); check the mesh");
       Eigen::MatrixXd Jinv = J.inverse();
-      double* g = &grad_[((static_cast<std::size_t>(c) * nqp_) + q) * npc_ * dim];
       for (int a = 0; a < npc_; ++a)
         for (int l = 0; l < dim; ++l) {
-          double s = 0.0;
-          for (int k = 0; k < dim; ++k) s += dN[a * dim + k] * Jinv(k, l);
-          g[a * dim + l] = s;
+          double sum = 0.0;
+          for (int k = 0; k < dim; ++k) sum += dN[a * dim + k] * Jinv(k, l);
+          grad_.push_back(sum);
         }
-      wdet_[static_cast<std::size_t>(c) * nqp_ + q] = rule.weights[q] * det;
+      wdet_.push_back(cell.weights[q] * det);
     }
+    point_start_.push_back(static_cast<Index>(wdet_.size()));
   }
   if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
   build_loads(scene);
   build_constraints(scene);
+}
+
+QuadratureRule FemBody::cell_rule(Index c, const QuadratureRule& whole, bool constant_integrand) const {
+  if (!split_ || split_->whole(c)) return whole;
+  const std::span<const Vec3> fragment = split_->fragment(c);
+  if (!constant_integrand) return fragment_quadrature(mesh_.dimension, fragment, whole);
+  Vec3 centre = Vec3::Zero();
+  for (int k = 0; k <= mesh_.dimension; ++k) centre += fragment[k] / (mesh_.dimension + 1);
+  return {{centre}, {fragment_measure(mesh_.dimension, fragment)}};
+}
+
+std::unique_ptr<DiscreteBody> FemBody::split_along(const Scene& scene, std::span<const CutPiece> pieces) const {
+  return std::unique_ptr<DiscreteBody>(new FemBody(Ordered{}, scene, outline(), share_, pieces));
+}
+
+Vector FemBody::carried_to(const DiscreteBody& next_body, const Vector& field) const {
+  const auto* next = dynamic_cast<const FemBody*>(&next_body);
+  KERF_CHECK(next && next->outline().cell_count() == outline().cell_count() &&
+                 next->outline().node_count() == outline().node_count(),
+             "internal: a split body's state carried to a body on another mesh");
+  const int dim = mesh_.dimension;
+  Vector out = Vector::Zero(next->dof_count());
+  for (Index c = 0; c < next->mesh_.cell_count(); ++c) {
+    const Index parent = next->split_ ? next->split_->parent[c] : c;
+    // This body's copy of the parent holding the new fragment (cuts only grow:
+    // it lies in one old fragment); a point inside its first sub-simplex tells.
+    auto [from, last] = copies_of(parent);
+    if (last - from > 1 && next->split_ && !next->split_->whole(c)) {
+      const auto fragment = next->split_->fragment(c);
+      Vec3 inside = Vec3::Zero();
+      for (int k = 0; k <= dim; ++k) inside += fragment[k] / (dim + 1);
+      for (Index old = from; old < last; ++old)
+        if (fragment_holds(dim, split_->fragment(old), inside)) {
+          from = old;
+          break;
+        }
+    }
+    const auto to_nodes = next->mesh_.cell(c), from_nodes = mesh_.cell(from);
+    for (int a = 0; a < npc_; ++a)
+      for (int i = 0; i < dim; ++i) out[dim * to_nodes[a] + i] = field[dim * from_nodes[a] + i];
+  }
+  return out;
+}
+
+std::pair<Index, Index> FemBody::copies_of(Index p) const {
+  if (!split_) return {p, p + 1};
+  return {copies_start_[p], copies_start_[p + 1]};
+}
+
+Index FemBody::copy_node(Index c, Index parent, Index node) const {
+  const auto nodes = outline().cell(parent);
+  const auto local = std::find(nodes.begin(), nodes.end(), node) - nodes.begin();
+  return mesh_.cell(c)[local];
 }
 
 void FemBody::average_bulk_at_nodes(const Scene& scene) {
@@ -131,7 +204,9 @@ void FemBody::bulk_averages(const Vector& u, BulkAverages& out) const {
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < cells; ++c) {
     auto nodes = mesh_.cell(c);
-    Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[static_cast<std::size_t>(c) * Npc * Dim]);
+    // One point per linear cell (copies too): its gradients.
+    Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(
+        &grad_[static_cast<std::size_t>(point_start_[c]) * Npc * Dim]);
     Mat3 F = Mat3::Identity();
     for (int a = 0; a < Npc; ++a)
       for (int i = 0; i < Dim; ++i) F.row(i).template head<Dim>() += u[Dim * nodes[a] + i] * G.row(a);
@@ -174,8 +249,7 @@ void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const 
               }
             work.force.setZero();
             if (sink) work.stiffness.setZero();
-            for (int q = 0; q < nqp_; ++q) {
-              const std::size_t point = static_cast<std::size_t>(c) * nqp_ + q;
+            for (std::size_t point = point_start_[c]; point < static_cast<std::size_t>(point_start_[c + 1]); ++point) {
               Eigen::Map<const Eigen::Matrix<double, Npc, Dim, Eigen::RowMajor>> G(&grad_[point * Npc * Dim]);
               const double w = wdet_[point];
               Mat3 F = Mat3::Identity();
@@ -394,9 +468,9 @@ void FemBody::visit_couplings(const CouplingVisitor& visit) const {
   }
 }
 
-Eigen::MatrixXd FemBody::element_scalar_mass(Index c) const {
+Eigen::MatrixXd FemBody::element_scalar_mass(Index c, bool whole) const {
   const int dim = mesh_.dimension;
-  const QuadratureRule& rule = mass_rule_;
+  const QuadratureRule rule = whole ? mass_rule_ : cell_rule(c, mass_rule_);
   auto nodes = mesh_.cell(c);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(npc_, npc_);
   std::vector<double> N(npc_), dN(npc_ * dim);
@@ -419,13 +493,19 @@ Vector FemBody::lumped_mass() const {
   const int dim = mesh_.dimension;
   Vector m = Vector::Zero(dof_count());
   for (Index c = cell_begin_; c < cell_end_; ++c) {
-    Eigen::MatrixXd M = element_scalar_mass(c);
-    double scale = M.sum() / M.diagonal().sum();
+    const Eigen::VectorXd lumped = lumped_cell_mass(c);
     auto nodes = mesh_.cell(c);
     for (int a = 0; a < npc_; ++a)
-      for (int i = 0; i < dim; ++i) m[dim * nodes[a] + i] += scale * M(a, a);
+      for (int i = 0; i < dim; ++i) m[dim * nodes[a] + i] += lumped[a];
   }
   return m;
+}
+
+Eigen::VectorXd FemBody::lumped_cell_mass(Index c) const {
+  const Eigen::MatrixXd M = element_scalar_mass(c);
+  if (!split_ || split_->whole(c)) return M.diagonal() * (M.sum() / M.diagonal().sum());
+  const Eigen::MatrixXd parent = element_scalar_mass(c, /*whole=*/true);
+  return parent.diagonal() * (M.sum() / parent.diagonal().sum());
 }
 
 void FemBody::consistent_mass(const BlockSink& sink) const {
@@ -466,6 +546,11 @@ void FemBody::add_gravity(const Vec3& gravity) {
   for (Index c = 0; c < cells; ++c) {
     const auto nodes = mesh_.cell(c);
     double* w = &integral[static_cast<std::size_t>(c) * npc];
+    if (split_ && !split_->whole(c)) {  // a copy: over its fragment alone
+      const Eigen::VectorXd row_sums = element_scalar_mass(c).rowwise().sum();
+      for (std::size_t a = 0; a < npc; ++a) w[a] = row_sums[a];
+      continue;
+    }
     for (std::size_t q = 0; q < nq; ++q) {
       Mat3 J = Mat3::Identity();
       for (int i = 0; i < dim; ++i)
@@ -499,10 +584,17 @@ void FemBody::build_loads(const Scene& scene) {
     std::vector<char> selected(mesh_.nodes.size(), 0);
     for (Index n : select_nodes(bc.select)) selected[n] = 1;
     Index loaded = 0;
+    std::vector<Index> fn(nf);
     for (Index fi = 0; fi < facets_.count(); ++fi) {
-      auto fn = facets_.facet(fi);
-      if (!std::all_of(fn.begin(), fn.end(), [&](Index n) { return selected[n]; })) continue;
+      const auto facet = facets_.facet(fi);
+      if (!std::all_of(facet.begin(), facet.end(), [&](Index n) { return selected[n]; })) continue;
       ++loaded;
+      // Its cell's copy's nodes (fem: split; a cell the cut separates has two).
+      const auto [first, last] = copies_of(facets_.cell[fi]);
+      KERF_CHECK(last - first == 1 && (!split_ || split_->whole(first)), bc.select.where.describe(),
+                 ": a traction or pressure on a boundary face that the cut (fem: split) separates is not built "
+                 "yet; expected the load's faces away from the cut, or the cut's fem: remesh");
+      for (int a = 0; a < nf; ++a) fn[a] = split_ ? copy_node(first, facets_.cell[fi], facet[a]) : facet[a];
       for (std::size_t q = 0; q < rule.points.size(); ++q) {
         simplex_shape_values(fdim, order, rule.points[q], N.data());
         simplex_shape_gradients(fdim, order, rule.points[q], dN.data());
@@ -532,6 +624,8 @@ void FemBody::build_constraints(const Scene& scene) {
 }
 
 SurfaceSamples FemBody::surface_samples(const Box& region, int points_per_direction) const {
+  // Scene validation refuses contact with fem: split before any work.
+  KERF_CHECK(!split_, "internal: contact on a body split by a cut (fem: split) is not built");
   const int dim = mesh_.dimension, fdim = dim - 1, nf = facets_.nodes_per_facet, corners = dim;
   const QuadratureRule rule = collapsed_gauss(fdim, points_per_direction);
   std::vector<double> N(nf), dN(nf * fdim);
@@ -573,8 +667,7 @@ double FemBody::critical_time_step() const {
   const int dim = mesh_.dimension, n = npc_ * dim;
   std::vector<double> omega2(mesh_.cell_count(), 0.0);
   ElementSink element_frequency = [&](Index c, std::span<const Index>, std::span<const double> values) {
-    Eigen::MatrixXd M = element_scalar_mass(c);
-    Eigen::VectorXd lumped = M.diagonal() * (M.sum() / M.diagonal().sum());
+    const Eigen::VectorXd lumped = lumped_cell_mass(c);
     Eigen::VectorXd s(n);
     for (int a = 0; a < npc_; ++a)
       for (int i = 0; i < dim; ++i) s[dim * a + i] = 1.0 / std::sqrt(lumped[a]);
@@ -588,16 +681,30 @@ double FemBody::critical_time_step() const {
 }
 
 std::vector<Index> FemBody::select_nodes(const Selection& selection) const {
-  return select_points(selection, mesh_.nodes, on_boundary_, domain_size_);
+  std::vector<Index> chosen = select_points(selection, outline().nodes, on_boundary_, domain_size_);
+  if (!split_) return chosen;
+  // The copies of a chosen node on its own side (a phantom only extends a copy's field).
+  std::vector<char> taken(outline().node_count(), 0);
+  for (Index n : chosen) taken[n] = 1;
+  for (Index k = outline().node_count(); k < mesh_.node_count(); ++k)
+    if (taken[split_->origin[k]] && !split_->phantom[k]) chosen.push_back(k);
+  return chosen;
 }
 
 std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const {
-  auto where = locator_.locate(mesh_, x, 1e-6 * domain_size_);
+  auto where = locator_.locate(outline(), x, 1e-6 * domain_size_);
   if (!where) return std::nullopt;
+  // The copy whose fragment holds the point (on the cut: the + side's, listed first).
+  auto [cell, last] = copies_of(where->cell);
+  for (Index c = cell; split_ && c < last; ++c)
+    if (split_->whole(c) || fragment_holds(mesh_.dimension, split_->fragment(c), where->local)) {
+      cell = c;
+      break;
+    }
   PointInterpolation p;
   p.weights.resize(npc_);
   simplex_shape_values(mesh_.dimension, mesh_.order, where->local, p.weights.data());
-  auto nodes = mesh_.cell(where->cell);
+  auto nodes = mesh_.cell(cell);
   p.nodes.assign(nodes.begin(), nodes.end());
   return p;
 }
@@ -608,31 +715,64 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
   out = BodySnapshot{};
   out.points = mesh_.nodes;
   out.connectivity.reserve(mesh_.cells.size());
-  for (Index c = 0; c < C; ++c) {
-    auto n = mesh_.cell(c);
-    for (int a = 0; a < npc_; ++a) {
-      int local = a;
-      if (npc_ == 10 && (a == 8 || a == 9)) local = 17 - a;  // gmsh (2,3),(1,3) -> VTK (1,3),(2,3)
-      out.connectivity.push_back(n[local]);
-    }
-    out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
-    out.cell_types.push_back(vtk_cell_type(dim, mesh_.order));
-  }
   OutputField displacement{"displacement", 3, std::vector<double>(3 * mesh_.nodes.size(), 0.0)};
   for (Index n = 0; n < mesh_.node_count(); ++n)
     for (int i = 0; i < dim; ++i) displacement.values[3 * n + i] = u[dim * n + i];
+  const std::vector<Mat3> sigma = cell_stresses(u);
+  OutputField stress{"stress", 9, {}}, mises{"von_mises", 1, {}};
+  std::vector<double> N(npc_);
+  for (Index c = 0; c < C; ++c) {
+    auto n = mesh_.cell(c);
+    const auto cell_values = [&] {
+      for (int k = 0; k < 9; ++k) stress.values.push_back(sigma[c](k / 3, k % 3));
+      mises.values.push_back(von_mises(sigma[c]));
+    };
+    if (!split_ || split_->whole(c)) {
+      for (int a = 0; a < npc_; ++a) {
+        int local = a;
+        if (npc_ == 10 && (a == 8 || a == 9)) local = 17 - a;  // gmsh (2,3),(1,3) -> VTK (1,3),(2,3)
+        out.connectivity.push_back(n[local]);
+      }
+      out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
+      out.cell_types.push_back(vtk_cell_type(dim, mesh_.order));
+      cell_values();
+      continue;
+    }
+    // A copy: its fragment's sub-simplices as linear cells, on points of their own
+    // carrying the copy's field (the copies of one cell overlap as whole cells).
+    const std::span<const Vec3> fragment = split_->fragment(c);
+    for (std::size_t k = 0; k < fragment.size(); ++k) {
+      simplex_shape_values(dim, mesh_.order, fragment[k], N.data());
+      Vec3 x = Vec3::Zero(), w = Vec3::Zero();
+      for (int a = 0; a < npc_; ++a) {
+        x += N[a] * mesh_.nodes[n[a]];
+        for (int i = 0; i < dim; ++i) w[i] += N[a] * u[dim * n[a] + i];
+      }
+      out.connectivity.push_back(static_cast<Index>(out.points.size()));
+      out.points.push_back(x);
+      for (int i = 0; i < 3; ++i) displacement.values.push_back(w[i]);
+      if ((k + 1) % (dim + 1)) continue;
+      out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
+      out.cell_types.push_back(vtk_cell_type(dim, 1));
+      cell_values();
+    }
+  }
   out.point_fields.push_back(std::move(displacement));
+  out.cell_fields.push_back(std::move(stress));
+  out.cell_fields.push_back(std::move(mises));
+}
 
-  OutputField stress{"stress", 9, std::vector<double>(9 * C, 0.0)};
-  OutputField mises{"von_mises", 1, std::vector<double>(C, 0.0)};
+std::vector<Mat3> FemBody::cell_stresses(const Vector& u) const {
+  const int dim = mesh_.dimension;
   BulkAverages& averages = bulk_state_;  // with the bulk term at the nodes, a cell's stress takes their mean
   if (bulk_average_)
     dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { bulk_averages<Dim, Npc>(u, averages); });
-  for (Index c = 0; c < C; ++c) {
+  std::vector<Mat3> out(mesh_.cell_count(), Mat3::Zero());
+  for (Index c = 0; c < mesh_.cell_count(); ++c) {
     auto nodes = mesh_.cell(c);
-    Mat3 sigma = Mat3::Zero();
-    for (int q = 0; q < nqp_; ++q) {
-      const double* g = &grad_[((static_cast<std::size_t>(c) * nqp_) + q) * npc_ * dim];
+    const Index first = point_start_[c], points = point_start_[c + 1] - first;
+    for (Index q = first; q < first + points; ++q) {
+      const double* g = &grad_[static_cast<std::size_t>(q) * npc_ * dim];
       Mat3 F = Mat3::Identity();
       for (int a = 0; a < npc_; ++a)
         for (int i = 0; i < dim; ++i)
@@ -640,13 +780,10 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
       const Mat3 P = bulk_average_ ? law_.averaged_bulk_stress(F, {averages.own[c], averages.gradient[c]},
                                                                averages.cell_mean[c])
                                    : law_.stress(F);
-      sigma += P * F.transpose() / (F.determinant() * nqp_);
+      out[c] += P * F.transpose() / (F.determinant() * points);
     }
-    for (int k = 0; k < 9; ++k) stress.values[9 * c + k] = sigma(k / 3, k % 3);
-    mises.values[c] = von_mises(sigma);
   }
-  out.cell_fields.push_back(std::move(stress));
-  out.cell_fields.push_back(std::move(mises));
+  return out;
 }
 
 }  // namespace kerf

@@ -12,6 +12,7 @@
 #include "discretization/fem/nodal_bulk_average.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "geometry/boundary_facets.h"
+#include "geometry/cell_split.h"
 #include "geometry/cell_schedule.h"
 #include "geometry/mesh.h"
 #include "geometry/point_location.h"
@@ -23,13 +24,22 @@ class FemBody final : public DiscreteBody,
                       public SurfaceSampling,
                       public ElementStepBound,
                       public MeshedBody,
+                      public CutsBySplitting,
                       public MatrixAssembly,
                       public PartitionedAssembly {
  public:
   /// Builds loads and constraints from the scene; throws on a selection that
   /// takes nothing. With a distributed `share`, assembles only its rank's
   /// cells (PartitionedAssembly): an even split of the locality-ordered cells.
-  FemBody(const Scene& scene, Mesh mesh, RankShare share = {});
+  /// With `split_along` (fem: split), the cells those cut pieces separate are
+  /// replaced by one copy per side (geometry/cell_split.h), each integrating
+  /// its fragment; loads, selections and probes are taken on the mesh as read.
+  FemBody(const Scene& scene, Mesh mesh, RankShare share = {}, std::span<const CutPiece> split_along = {});
+
+  /// The split (fem: split), or null.
+  const CellSplit* split() const { return split_ ? &*split_ : nullptr; }
+  std::unique_ptr<DiscreteBody> split_along(const Scene& scene, std::span<const CutPiece> pieces) const override;
+  Vector carried_to(const DiscreteBody& next, const Vector& field) const override;
 
   int dofs_per_node() const override { return mesh_.dimension; }
   Index node_count() const override { return mesh_.node_count(); }
@@ -65,6 +75,9 @@ class FemBody final : public DiscreteBody,
   const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
 
  private:
+  /// `mesh` already in locality order (a body split again keeps its mesh as read).
+  struct Ordered {};
+  FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along);
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
   /// The bulk measure's state for one displacement: each cell's own m_e and
@@ -84,8 +97,26 @@ class FemBody final : public DiscreteBody,
   /// stiffness goes to it for this rank's nodes. `standard`: every cell keeps its own bulk term.
   void loop(const Vector& u, const ElementSink* sink, Vector* f, double* energy,
             const NodalBulkAverage::StarSink* stars = nullptr, bool standard = false) const;
-  /// Element mass matrix (npc x npc, scalar: multiply by the identity per component).
-  Eigen::MatrixXd element_scalar_mass(Index c) const;
+  /// Element mass matrix (npc x npc, scalar: multiply by the identity per
+  /// component), over the cell's fragment (`whole`: over its parent).
+  Eigen::MatrixXd element_scalar_mass(Index c, bool whole = false) const;
+  /// Cell c's lumped (HRZ) masses: its consistent diagonal scaled to its
+  /// total. A copy takes its parent's times its share of the parent's mass,
+  /// so a tet4 copy keeps its parent's explicit step whatever its size
+  /// (split_elements.md 3.3); a fragment's own diagonal would not.
+  Eigen::VectorXd lumped_cell_mass(Index c) const;
+  /// Cell c's quadrature in its reference coordinates: `whole`'s, or on a
+  /// copy, `whole` moved onto its fragment (tet4/tri3 stiffness: one point,
+  /// the gradients being constant).
+  QuadratureRule cell_rule(Index c, const QuadratureRule& whole, bool constant_integrand = false) const;
+  /// Each cell's Cauchy stress, the mean over its stiffness points.
+  std::vector<Mat3> cell_stresses(const Vector& u) const;
+  /// The mesh as read: facets, selections and probes live on it.
+  const Mesh& outline() const { return split_ ? original_ : mesh_; }
+  /// The node of cell c (a copy of `parent`) at the parent's node `node`.
+  Index copy_node(Index c, Index parent, Index node) const;
+  /// The cells copying original cell p: [copies_of_[p], copies_of_[p + 1]).
+  std::pair<Index, Index> copies_of(Index p) const;
   /// rho g integrated against each node's shape function, into load_.
   void add_gravity(const Vec3& gravity);
   /// Each cell's node pairs (a, b): where column dpn node_b starts in row
@@ -100,7 +131,10 @@ class FemBody final : public DiscreteBody,
   /// This rank's cells, rows and touched nodes; the whole mesh on one rank.
   void share_cells(RankShare share);
 
-  Mesh mesh_;
+  Mesh original_;                    // fem: split: the mesh as read (else moved into mesh_)
+  std::optional<CellSplit> split_;   // fem: split: the copies' parents, fragments, node origins
+  Mesh mesh_;                        // the cells integrated (copies, with fem: split)
+  std::vector<Index> copies_start_;  // fem: split: per original cell + 1, its first copy
   BoundaryFacets facets_;
   RankShare share_;
   Index cell_begin_ = 0, cell_end_ = 0;       // this rank's cells (all on one rank)
@@ -113,15 +147,15 @@ class FemBody final : public DiscreteBody,
   double density_;
   double domain_size_;
   int npc_;                    // nodes per cell
-  int nqp_;                    // stiffness quadrature points per cell
+  std::vector<Index> point_start_;  // per cell + 1: its stiffness points in grad_, wdet_
   mutable std::vector<Index> pair_offsets_;        // npc^2 per cell
   mutable CsrView offsets_pattern_;                // the pattern pair_offsets_ was built for
   std::optional<NodalBulkAverage> bulk_average_;   // fem.volumetric: averaged_nodal
   mutable BulkAverages bulk_state_;                // its state at the last displacement asked
   mutable std::vector<Index> star_offsets_, star_offset_start_;
   mutable CsrView star_offsets_pattern_;
-  std::vector<double> grad_;   // C * nqp * npc * dim: dN/dX at each point
-  std::vector<double> wdet_;   // C * nqp: weight * det J (m^3, or m^2 in 2D)
+  std::vector<double> grad_;   // points * npc * dim: dN/dX at each point
+  std::vector<double> wdet_;   // points: weight * det J (m^3, or m^2 in 2D)
   QuadratureRule mass_rule_;   // exact for N_a N_b
   Vector load_;                // dead loads: gravity, traction, pressure (N)
   std::vector<DirichletDof> dirichlet_;

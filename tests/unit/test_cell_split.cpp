@@ -8,10 +8,10 @@
 #include <numeric>
 #include <random>
 
-#include "geometry/box_mesher.h"
 #include "geometry/cell_fragments.h"
 #include "geometry/cell_split.h"
-#include "support/kuhn_mesh.h"
+#include "support/cut_geometry.h"
+#include "support/test_support.h"
 
 namespace kerf {
 namespace {
@@ -73,17 +73,7 @@ TEST(CellFragments, EverySidePatternTilesTheTriangleAsTheLevelSetDoes) {
   expect_every_pattern_tiles(2, {Vec3(0.1, 0.2, 0), Vec3(2.0, 0.4, 0), Vec3(0.7, 1.3, 0), Vec3::Zero()});
 }
 
-/// The plane n . x = d as two triangles reaching `reach` beyond the unit box.
-std::vector<CutPiece> plane_pieces(const Vec3& n, double d, double reach = 0.5) {
-  // Points of the plane over the (y, z) square [-reach, 1 + reach]^2 (n.x() != 0).
-  const auto at = [&](double y, double z) { return Vec3((d - n.y() * y - n.z() * z) / n.x(), y, z); };
-  const double lo = -reach, hi = 1 + reach;
-  std::vector<CutPiece> pieces{testing::triangle_piece(at(lo, lo), at(hi, lo), at(hi, hi)),
-                               testing::triangle_piece(at(lo, lo), at(hi, hi), at(lo, hi))};
-  if (pieces[0].normal.dot(n) < 0)
-    for (CutPiece& p : pieces) std::swap(p.corner[1], p.corner[2]), p.normal = -p.normal;
-  return pieces;
-}
+std::vector<CutPiece> plane_pieces(const Vec3& n, double d) { return testing::plane_cut(3, n, d); }
 
 /// Each cell's part of the body, measured where its sub-simplices lie: the
 /// totals on the + and - sides of n . x = d.
@@ -114,31 +104,9 @@ std::array<double, 2> side_measures(const CellSplit& split, const Mesh& original
   return total;
 }
 
-/// Pieces of the split body: groups of cells joined through shared nodes.
 int pieces(const Mesh& mesh) {
-  std::vector<Index> root(mesh.node_count());
-  std::iota(root.begin(), root.end(), 0);
-  const auto find = [&](Index a) {
-    while (root[a] != a) a = root[a] = root[root[a]];
-    return a;
-  };
-  for (Index c = 0; c < mesh.cell_count(); ++c)
-    for (Index n : mesh.cell(c)) root[find(n)] = find(mesh.cell(c)[0]);
-  std::vector<char> used(mesh.node_count(), 0), counted(mesh.node_count(), 0);
-  for (Index n : mesh.cells) used[n] = 1;
-  int count = 0;
-  for (Index n = 0; n < mesh.node_count(); ++n)
-    if (used[n] && !counted[find(n)]) counted[find(n)] = 1, ++count;
-  return count;
-}
-
-Mesh unit_box_mesh(int dim, int order, double size) {
-  BoxMeshRequest request;
-  request.dimension = dim;
-  request.order = order;
-  request.max = dim == 3 ? Vec3(1, 1, 1) : Vec3(1, 1, 0);
-  request.size = size;
-  return mesh_box(request);
+  const std::vector<int> label = testing::node_pieces(mesh);
+  return *std::max_element(label.begin(), label.end()) + 1;
 }
 
 /// Neither snapping nor dropping: the fragments are the cut's exactly.
@@ -149,7 +117,7 @@ const SplitOptions exact{0.0, 0.0};
 // 0.05 of their shortest edge (0.2 here): at most that slab changes side.
 TEST(CellSplit, AnObliquePlaneSplitsTheBoxVolumeExactlyIntoTwoPieces) {
   for (int order : {1, 2}) {
-    const Mesh mesh = unit_box_mesh(3, order, 0.2);
+    const Mesh mesh = testing::unit_box_mesh(3, order, 0.2);
     const Vec3 n(1, 0.3, 0.2);
     const CellSplit split = split_cells(mesh, plane_pieces(n, 0.6), exact);
     EXPECT_GT(split.separated_cells, 10);
@@ -169,13 +137,9 @@ TEST(CellSplit, AnObliquePlaneSplitsTheBoxVolumeExactlyIntoTwoPieces) {
 }
 
 TEST(CellSplit, AnObliqueLineSplitsThePlateAreaExactlyIntoTwoPieces) {
-  const Mesh mesh = unit_box_mesh(2, 1, 0.1);
-  CutPiece line;
-  line.corner = {Vec3(0.55, -0.5, 0), Vec3(0.25, 1.5, 0), Vec3::Zero()};  // x + 0.15 y = 0.475
-  const Vec3 t = line.corner[1] - line.corner[0];
-  line.normal = Vec3(-t.y(), t.x(), 0).normalized();
-  const Vec3 n = line.normal / line.normal.x();  // (1, 0.15)
-  const CellSplit split = split_cells(mesh, std::vector<CutPiece>{line}, exact);
+  const Mesh mesh = testing::unit_box_mesh(2, 1, 0.1);
+  const Vec3 n(1, 0.15, 0);  // x + 0.15 y = 0.475
+  const CellSplit split = split_cells(mesh, testing::plane_cut(2, n, 0.475), exact);
   const auto [right, left] = side_measures(split, mesh, n, 0.475);
   EXPECT_NEAR(left + right, 1.0, 1e-13);
   EXPECT_NEAR(left, 0.475 - 0.075, 1e-12);
@@ -213,7 +177,7 @@ TEST(CellSplit, ACutThroughANodeDuplicatesItAndLeavesNoSliver) {
 // A cut from the face x = 0 to x = 0.5 (its front inside the box): the body
 // stays one piece; no node at or beyond the front is duplicated.
 TEST(CellSplit, AFrontInsideTheBodyKeepsTheMaterialJoinedBeyondIt) {
-  const Mesh mesh = unit_box_mesh(3, 1, 0.1);
+  const Mesh mesh = testing::unit_box_mesh(3, 1, 0.1);
   const double front = 0.5;
   const Vec3 a(-0.5, 0.43, -0.5), b(front, 0.43, -0.5), c(front, 0.43, 1.5), d(-0.5, 0.43, 1.5);
   const std::vector<CutPiece> cut{testing::triangle_piece(a, b, c), testing::triangle_piece(a, c, d)};

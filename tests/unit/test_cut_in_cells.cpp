@@ -8,7 +8,7 @@
 #include <numeric>
 
 #include "geometry/cut_in_cells.h"
-#include "support/kuhn_mesh.h"
+#include "support/cut_geometry.h"
 
 namespace kerf {
 namespace {
