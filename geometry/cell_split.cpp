@@ -424,6 +424,7 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
     for (std::size_t k = 0; k < (merged ? 1 : tuples.size()); ++k) {
       out.mesh.cells.insert(out.mesh.cells.end(), tuples[k].begin(), tuples[k].end());
       out.parent.push_back(c);
+      out.side.push_back(merged ? 0 : copies_[copy_start_[c] + k].side);
       const Copy& copy = copies_[copy_start_[c] + k];
       if (!merged && !copy.fragment.empty()) {
         // Reference coordinates by the corners' affine map.
@@ -440,6 +441,20 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
 }
 
 }  // namespace
+
+int side_of_cut(int dimension, std::span<const CutPiece> pieces, const Vec3& x) {
+  double nearest = std::numeric_limits<double>::infinity();
+  const CutPiece* which = nullptr;
+  for (const CutPiece& p : pieces) {
+    const std::array<Vec3, 3> facet =
+        dimension == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner;
+    const double d = distance_to_facets(x, std::span(&facet, 1));
+    if (d < nearest) nearest = d, which = &p;
+  }
+  if (!which) return 0;
+  const double s = which->normal.dot(x - which->corner[0]);
+  return s > 0 ? 1 : s < 0 ? -1 : 0;
+}
 
 CellSplit split_cells(const Mesh& mesh, std::span<const CutPiece> pieces, const SplitOptions& options) {
   return Splitter(mesh, pieces, options).run();

@@ -43,6 +43,7 @@ struct CellSplit {
   /// across the cut, as XFEM's phantom nodes): boundary conditions skip it.
   std::vector<char> phantom;
   std::vector<Index> parent;          // per cell: its cell in the original mesh
+  std::vector<int> side;              // per cell: +1 or -1 for a copy of a separated cell, 0 for a whole one
   std::vector<Index> fragment_start;  // per cell, + 1: its sub-simplices in fragment_points
   /// (dim + 1) reference coordinates (the parent's, corners' affine map) per
   /// sub-simplex of each copy's fragment; a cell with none is whole.
@@ -58,6 +59,10 @@ struct CellSplit {
     return {fragment_points.data() + fragment_start[c], fragment_points.data() + fragment_start[c + 1]};
   }
 };
+
+/// The side of the cut x lies on: the sign of the plane (2D: line) of the
+/// piece nearest to it (+1 where its normal points; 0 on it).
+int side_of_cut(int dimension, std::span<const CutPiece> pieces, const Vec3& x);
 
 /// Splits `mesh` along the pieces (of one or several cuts, flat, consistently
 /// oriented). A mesh no piece separates comes back as it is.

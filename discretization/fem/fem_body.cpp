@@ -64,7 +64,9 @@ FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const
 
 FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : original_(std::move(mesh)),
-      split_(split_along.empty() ? std::nullopt : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
+      split_(split_along.empty() ? std::nullopt
+                                 : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
+      split_pieces_(split_along.begin(), split_along.end()),
       mesh_(split_ ? std::move(split_->mesh) : std::move(original_)),
       facets_(boundary_facets(outline())),
       on_boundary_(boundary_node_flags(outline(), facets_)),
@@ -694,13 +696,17 @@ std::vector<Index> FemBody::select_nodes(const Selection& selection) const {
 std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const {
   auto where = locator_.locate(outline(), x, 1e-6 * domain_size_);
   if (!where) return std::nullopt;
-  // The copy whose fragment holds the point (on the cut: the + side's, listed first).
+  // The copy on the point's side of the cut as given (snapping may have moved
+  // the fragments' boundary a little past it); on the cut, the + side's.
   auto [cell, last] = copies_of(where->cell);
-  for (Index c = cell; split_ && c < last; ++c)
-    if (split_->whole(c) || fragment_holds(mesh_.dimension, split_->fragment(c), where->local)) {
-      cell = c;
-      break;
-    }
+  if (last - cell > 1) {
+    const int side = side_of_cut(mesh_.dimension, split_pieces_, x);
+    for (Index c = cell; c < last; ++c)
+      if (split_->side[c] == (side < 0 ? -1 : 1)) {
+        cell = c;
+        break;
+      }
+  }
   PointInterpolation p;
   p.weights.resize(npc_);
   simplex_shape_values(mesh_.dimension, mesh_.order, where->local, p.weights.data());

@@ -133,6 +133,7 @@ class FemBody final : public DiscreteBody,
 
   Mesh original_;                    // fem: split: the mesh as read (else moved into mesh_)
   std::optional<CellSplit> split_;   // fem: split: the copies' parents, fragments, node origins
+  std::vector<CutPiece> split_pieces_;  // fem: split: the cut as given (a probe's side)
   Mesh mesh_;                        // the cells integrated (copies, with fem: split)
   std::vector<Index> copies_start_;  // fem: split: per original cell + 1, its first copy
   BoundaryFacets facets_;

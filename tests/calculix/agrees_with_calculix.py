@@ -20,7 +20,7 @@ def run_kerf(name, msh, rest):
     scene = os.path.join(work, name + ".yaml")
     open(scene, "w").write(f"name: {name}\ndomain: {{mesh: {msh}}}\n"
                            f"material: {{model: neohookean_uncoupled, young: {E}, poisson: {NU}, density: {RHO}}}\n"
-                           "discretization: {method: fem}\nsolve: {analysis: static}\n" + rest)
+                           "discretization: {method: fem, fem: {element: tet10}}\nsolve: {analysis: static}\n" + rest)
     out = os.path.join(work, name + "_out")
     subprocess.run([kerf, "run", scene, "--out", out, "--quiet"], check=True)
     return json.load(open(os.path.join(out, "summary.json")))
