@@ -380,7 +380,9 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
   // the cut: the + side's, then the - side's) keeps its id, the others are new.
   std::unordered_map<std::size_t, Index> node_of_group;
   for (Index n : involved) {
-    struct Group { std::size_t root; int rank; Index first_cell; };
+    // key: the smallest of its cells' sorted corners, so that groups of one
+    // rank are numbered alike whatever order the cells come in.
+    struct Group { std::size_t root; int rank; std::array<Index, 4> key; };
     std::vector<Group> groups;
     for (Index c : cells_of(n))
       for (Index p = copy_start_[c]; p < copy_start_[c + 1]; ++p) {
@@ -390,11 +392,19 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
         int rank = material(copies_[p], local) ? 4 : 0;
         for (int k = 0; k < corners; ++k)
           if (material(copies_[p], k)) rank |= sides_.side(mesh_.cell(c)[k]) > 0 ? 2 : 1;
+        std::array<Index, 4> key{-1, -1, -1, -1};
+        std::copy(mesh_.cell(c).begin(), mesh_.cell(c).begin() + corners, key.begin());
+        std::sort(key.begin(), key.begin() + corners);
         auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.root == root; });
-        if (g == groups.end()) groups.push_back({root, rank, c});
-        else g->rank |= rank;
+        if (g == groups.end()) {
+          groups.push_back({root, rank, key});
+        } else {
+          g->rank |= rank;
+          g->key = std::min(g->key, key);
+        }
       }
-    std::stable_sort(groups.begin(), groups.end(), [](const Group& a, const Group& b) { return a.rank > b.rank; });
+    std::sort(groups.begin(), groups.end(),
+              [](const Group& a, const Group& b) { return a.rank != b.rank ? a.rank > b.rank : a.key < b.key; });
     for (std::size_t k = 0; k < groups.size(); ++k) {
       Index id = n;
       if (k > 0) {

@@ -100,11 +100,12 @@ def main(cut_study, mpi_run, serial_run, out_dir):
     runs = os.path.join(cut_study, "runs")
     check_cut_series(os.path.join(runs, "nodal_grid", "cut.pvd"), body_cell_stress=False, grid="phi_cut0")
     check_cut_series(os.path.join(runs, "fem_remesh", "cut.pvd"), body_cell_stress=True, grid=None)
+    check_cut_series(os.path.join(runs, "fem_split", "cut.pvd"), body_cell_stress=True, grid=None)
     check_vti(sorted(glob.glob(os.path.join(runs, "nodal_grid", "*_phi_*_0*.vti")))[-1])
     name = os.path.basename(glob.glob(os.path.join(serial_run, "*.pvd"))[0])
     check_pieces(os.path.join(mpi_run, name), os.path.join(serial_run, name))
     paraview_pictures.main(cut_study, out_dir, [400, 280])
-    for way in ("fem_remesh", "fem_remove", "nodal_grid"):
+    for way in ("fem_remesh", "fem_remove", "fem_split", "nodal_grid"):
         check_picture(os.path.join(out_dir, way + ".png"))
     if failures:
         sys.exit(f"{len(failures)} failed: " + "; ".join(failures))

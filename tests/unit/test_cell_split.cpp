@@ -5,6 +5,8 @@
 // without slivers; a front inside the body keeps the material joined.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <map>
 #include <numeric>
 #include <random>
 
@@ -172,6 +174,57 @@ TEST(CellSplit, ACutThroughANodeDuplicatesItAndLeavesNoSliver) {
   EXPECT_GT(split.smallest_fraction, 1e-4);
   const auto [above, below] = side_measures(split, mesh, n, n.dot(Vec3(0.5, 0.5, 0.5)));
   EXPECT_NEAR(above + below, 1.0, 1e-12);
+}
+
+// x + 2 y = 1.5 holds three columns of the Kuhn cubes' nodes and their
+// vertical edges, and crosses the other cells through their interiors: the
+// edges' nodes are duplicated, the cells beside them split, no sliver left.
+TEST(CellSplit, ACutAlongEdgesDuplicatesTheirNodesAndSplitsTheCellsItCrosses) {
+  const Mesh mesh = testing::kuhn_cubes(4, 0.25);
+  const Vec3 n(1, 2, 0);
+  const CellSplit split = split_cells(mesh, plane_pieces(n, 1.5), exact);
+  Index on_plane = 0;
+  for (Index k = 0; k < mesh.node_count(); ++k) on_plane += std::abs(n.dot(mesh.nodes[k]) - 1.5) < 1e-12;
+  EXPECT_EQ(on_plane, 15);
+  for (Index k = 0; k < mesh.node_count(); ++k)
+    if (std::abs(n.dot(mesh.nodes[k]) - 1.5) < 1e-12)
+      EXPECT_EQ(std::count(split.origin.begin(), split.origin.end(), k), 2) << "node " << k;
+  EXPECT_GT(split.separated_cells, 0);
+  EXPECT_EQ(pieces(split.mesh), 2);
+  const auto [above, below] = side_measures(split, mesh, n, 1.5);
+  // Below x + 2 y = 1.5 in the unit cube: the integral over y of clamp(1.5 - 2 y, 0, 1).
+  EXPECT_NEAR(below, 0.25 + 0.5 * 0.5, 1e-12);
+  EXPECT_NEAR(above + below, 1.0, 1e-12);
+}
+
+// The same cut on the same mesh with its cells listed in another order: the
+// same copies, node for node (new nodes numbered by their original's id and
+// side, never by the order cells come in).
+TEST(CellSplit, TheSplitDoesNotDependOnTheCellsOrder) {
+  const Mesh mesh = testing::unit_box_mesh(3, 2, 0.2);
+  Mesh shuffled = mesh;
+  std::vector<Index> order(mesh.cell_count());
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(order.begin(), order.end(), std::mt19937(3));
+  const int npc = mesh.nodes_per_cell();
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    std::copy(mesh.cell(order[c]).begin(), mesh.cell(order[c]).end(), shuffled.cells.begin() + c * npc);
+  const std::vector<CutPiece> cut = plane_pieces(Vec3(1, 0.3, 0.2), 0.6);
+  const CellSplit a = split_cells(mesh, cut), b = split_cells(shuffled, cut);
+  ASSERT_EQ(a.mesh.node_count(), b.mesh.node_count());
+  EXPECT_EQ(a.origin, b.origin);
+  EXPECT_EQ(a.phantom, b.phantom);
+  // Each parent's copies, as node tuples with their side, match.
+  std::map<std::pair<Index, int>, std::vector<Index>> copies_a, copies_b;
+  for (Index c = 0; c < a.mesh.cell_count(); ++c) {
+    const auto cell = a.mesh.cell(c);
+    copies_a[{a.parent[c], a.side[c]}].assign(cell.begin(), cell.end());
+  }
+  for (Index c = 0; c < b.mesh.cell_count(); ++c) {
+    const auto cell = b.mesh.cell(c);
+    copies_b[{order[b.parent[c]], b.side[c]}].assign(cell.begin(), cell.end());
+  }
+  EXPECT_TRUE(copies_a == copies_b);
 }
 
 // A cut from the face x = 0 to x = 0.5 (its front inside the box): the body
