@@ -212,6 +212,7 @@ class Splitter {
 
  private:
   void make_copies();
+  std::optional<bool> separation(Index c, const std::array<int, 4>& side);
   void side_mid_edge_nodes();
   std::vector<Index> involved_nodes() const;
   /// The cells holding node n (a mid-edge node: those holding its edge).
@@ -221,6 +222,7 @@ class Splitter {
     return copy.side == 0 ? s != 0 : s == copy.side;
   }
   void join_around(Index n, Slots& slots);
+  std::unordered_map<std::size_t, Index> number_groups(const std::vector<Index>& involved, Slots& slots);
   CellSplit assemble(const std::vector<Index>& involved, Slots& slots);
   int local_index(Index cell, Index node) const {
     const auto nodes = mesh_.cell(cell);
@@ -235,59 +237,65 @@ class Splitter {
   std::vector<Copy> copies_;
   std::vector<Index> copy_start_;            // per cell + 1, into copies_
   std::vector<std::array<Index, 2>> edge_of_;  // per node: the corners of its edge (mid-edge nodes), else -1
-  std::vector<char> separated_;
+  std::vector<char> candidate_, separated_;
   CellSplit out_;
 };
+
+/// How cell c meets the cut: not separated (nullopt), separated (false), or
+/// split beyond the front (true: over-cut, along its pieces' planes).
+std::optional<bool> Splitter::separation(Index c, const std::array<int, 4>& side) {
+  const int corners = mesh_.dimension + 1;
+  const auto cell = mesh_.cell(c);
+  bool plus = false, minus = false;
+  for (int k = 0; k < corners; ++k) plus |= side[k] > 0, minus |= side[k] < 0;
+  if (!candidate_[c] || !plus || !minus) return std::nullopt;
+  // Separated: every edge between the sides crosses the cut. Over-cut, a
+  // front cell the cut enters is also split along its nearest piece's plane.
+  bool entered = false, spanned = true, extended = true;
+  for (int a = 0; a < corners; ++a)
+    for (int b = a + 1; b < corners; ++b) {
+      if (side[a] * side[b] >= 0) continue;
+      const bool crosses = sides_.crossing(cell[a], cell[b]).has_value();
+      entered |= crosses;
+      spanned &= crosses;
+      extended &= crosses || sides_.crossing(cell[a], cell[b], true).has_value();
+    }
+  if (spanned) return false;
+  if (options_.over_cut && entered && extended) return true;
+  return std::nullopt;
+}
 
 void Splitter::make_copies() {
   const int dim = mesh_.dimension, corners = dim + 1;
   separated_.assign(mesh_.cell_count(), 0);
-  std::vector<char> candidate(mesh_.cell_count(), 0);
-  for (Index c : sides_.candidates()) candidate[c] = 1;
+  candidate_.assign(mesh_.cell_count(), 0);
+  for (Index c : sides_.candidates()) candidate_[c] = 1;
   copy_start_.assign(1, 0);
   for (Index c = 0; c < mesh_.cell_count(); ++c) {
     const auto cell = mesh_.cell(c);
     std::array<int, 4> side{};
     std::array<Vec3, 4> x{};
-    bool plus = false, minus = false;
-    for (int k = 0; k < corners; ++k) {
-      side[k] = sides_.side(cell[k]);
-      x[k] = mesh_.nodes[cell[k]];
-      plus |= side[k] > 0;
-      minus |= side[k] < 0;
-    }
-    // Separated: every edge between the sides crosses the cut. Over-cut, a
-    // front cell the cut enters is also split along its nearest piece's plane.
-    bool entered = false, spanned = true, extended = true;
-    for (int a = 0; a < corners && candidate[c] && plus && minus; ++a)
-      for (int b = a + 1; b < corners; ++b) {
-        if (side[a] * side[b] >= 0) continue;
-        const bool crosses = sides_.crossing(cell[a], cell[b]).has_value();
-        entered |= crosses;
-        spanned &= crosses;
-        extended &= crosses || sides_.crossing(cell[a], cell[b], true).has_value();
-      }
-    const bool beyond_front = !spanned && options_.over_cut && entered && extended;
-    if (!(candidate[c] && plus && minus && (spanned || beyond_front))) {
+    for (int k = 0; k < corners; ++k) side[k] = sides_.side(cell[k]), x[k] = mesh_.nodes[cell[k]];
+    const std::optional<bool> beyond_front = separation(c, side);
+    if (!beyond_front) {
       copies_.push_back({c, 0, {}});
       copy_start_.push_back(static_cast<Index>(copies_.size()));
       continue;
     }
     separated_[c] = 1;
     ++out_.separated_cells;
-    const CellFragments parts =
-        cell_fragments(dim, x, side, [&](int a, int b) { return *sides_.crossing(cell[a], cell[b], beyond_front); });
+    const CellFragments parts = cell_fragments(
+        dim, x, side, [&](int a, int b) { return *sides_.crossing(cell[a], cell[b], *beyond_front); });
     const double measure = cell_measure(mesh_, c);
-    std::array<double, 2> fraction{};
-    for (int s = 0; s < 2; ++s)
-      for (std::size_t k = 0; k < parts.simplices[s].size(); k += corners)
-        fraction[s] += simplex_measure(dim, &parts.simplices[s][k]) / measure;
     for (int s = 0; s < 2; ++s) {
-      if (fraction[s] <= options_.min_fraction) {  // (an empty fragment is never a copy)
-        out_.dropped_measure += fraction[s] * measure;
+      double fraction = 0.0;
+      for (std::size_t k = 0; k < parts.simplices[s].size(); k += corners)
+        fraction += simplex_measure(dim, &parts.simplices[s][k]) / measure;
+      if (fraction <= options_.min_fraction) {  // (an empty fragment is never a copy)
+        out_.dropped_measure += fraction * measure;
         continue;
       }
-      out_.smallest_fraction = std::min(out_.smallest_fraction, fraction[s]);
+      out_.smallest_fraction = std::min(out_.smallest_fraction, fraction);
       copies_.push_back({c, s == 0 ? 1 : -1, parts.simplices[s]});
     }
     copy_start_.push_back(static_cast<Index>(copies_.size()));
@@ -367,17 +375,12 @@ void Splitter::join_around(Index n, Slots& slots) {
     }
 }
 
-CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
-  const int dim = mesh_.dimension, corners = dim + 1;
+/// Each involved node's groups of slots: the one where it is material (on
+/// the cut: the + side's, then the - side's) keeps its id, the others are
+/// new nodes, appended to out_'s. Returns each group's root's node.
+std::unordered_map<std::size_t, Index> Splitter::number_groups(const std::vector<Index>& involved, Slots& slots) {
+  const int corners = mesh_.dimension + 1;
   CellSplit& out = out_;
-  out.mesh.dimension = dim;
-  out.mesh.order = mesh_.order;
-  out.mesh.nodes = mesh_.nodes;
-  out.origin.resize(mesh_.node_count());
-  std::iota(out.origin.begin(), out.origin.end(), 0);
-  out.phantom.assign(mesh_.node_count(), 0);
-  // Each involved node's groups of slots: the one where it is material (on
-  // the cut: the + side's, then the - side's) keeps its id, the others are new.
   std::unordered_map<std::size_t, Index> node_of_group;
   for (Index n : involved) {
     // key: the smallest of its cells' sorted corners, so that groups of one
@@ -392,9 +395,9 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
         int rank = material(copies_[p], local) ? 4 : 0;
         for (int k = 0; k < corners; ++k)
           if (material(copies_[p], k)) rank |= sides_.side(mesh_.cell(c)[k]) > 0 ? 2 : 1;
-        std::array<Index, 4> key{-1, -1, -1, -1};
-        std::copy(mesh_.cell(c).begin(), mesh_.cell(c).begin() + corners, key.begin());
-        std::sort(key.begin(), key.begin() + corners);
+        std::array<Index, 4> key{-1, -1, -1, -1};  // 2D: the last stays -1
+        for (int k = 0; k < corners; ++k) key[k] = mesh_.cell(c)[k];
+        std::sort(key.begin(), key.end());
         auto g = std::find_if(groups.begin(), groups.end(), [&](const Group& x) { return x.root == root; });
         if (g == groups.end()) {
           groups.push_back({root, rank, key});
@@ -417,6 +420,19 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
       node_of_group[groups[k].root] = id;
     }
   }
+  return node_of_group;
+}
+
+CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
+  const int dim = mesh_.dimension;
+  CellSplit& out = out_;
+  out.mesh.dimension = dim;
+  out.mesh.order = mesh_.order;
+  out.mesh.nodes = mesh_.nodes;
+  out.origin.resize(mesh_.node_count());
+  std::iota(out.origin.begin(), out.origin.end(), 0);
+  out.phantom.assign(mesh_.node_count(), 0);
+  const std::unordered_map<std::size_t, Index> node_of_group = number_groups(involved, slots);
   std::vector<char> is_involved(mesh_.node_count(), 0);
   for (Index n : involved) is_involved[n] = 1;
   out.fragment_start.assign(1, 0);
