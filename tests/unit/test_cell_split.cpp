@@ -186,9 +186,11 @@ TEST(CellSplit, ACutAlongEdgesDuplicatesTheirNodesAndSplitsTheCellsItCrosses) {
   Index on_plane = 0;
   for (Index k = 0; k < mesh.node_count(); ++k) on_plane += std::abs(n.dot(mesh.nodes[k]) - 1.5) < 1e-12;
   EXPECT_EQ(on_plane, 15);
-  for (Index k = 0; k < mesh.node_count(); ++k)
-    if (std::abs(n.dot(mesh.nodes[k]) - 1.5) < 1e-12)
+  for (Index k = 0; k < mesh.node_count(); ++k) {
+    if (std::abs(n.dot(mesh.nodes[k]) - 1.5) < 1e-12) {
       EXPECT_EQ(std::count(split.origin.begin(), split.origin.end(), k), 2) << "node " << k;
+    }
+  }
   EXPECT_GT(split.separated_cells, 0);
   EXPECT_EQ(pieces(split.mesh), 2);
   const auto [above, below] = side_measures(split, mesh, n, 1.5);
@@ -225,6 +227,45 @@ TEST(CellSplit, TheSplitDoesNotDependOnTheCellsOrder) {
     copies_b[{order[b.parent[c]], b.side[c]}].assign(cell.begin(), cell.end());
   }
   EXPECT_TRUE(copies_a == copies_b);
+}
+
+// The plane 0.3 x + y + 0.2 z = 0.75 holds the node (0.5, 0.5, 0.5); the cut
+// is its part at x <= 0.5, so its front runs through that node. The body
+// stays one piece and no node at or beyond the front is copied on its side.
+TEST(CellSplit, AFrontThroughANodeLeavesTheNodeJoined) {
+  const Mesh mesh = testing::kuhn_cubes(4, 0.25);
+  const Vec3 n(0.3, 1, 0.2);
+  const double d = n.dot(Vec3(0.5, 0.5, 0.5));
+  const auto at = [&](double x, double z) { return Vec3(x, (d - n.x() * x - n.z() * z) / n.y(), z); };
+  const std::vector<CutPiece> cut{testing::triangle_piece(at(-0.5, -0.5), at(0.5, -0.5), at(0.5, 1.5)),
+                                  testing::triangle_piece(at(-0.5, -0.5), at(0.5, 1.5), at(-0.5, 1.5))};
+  const CellSplit split = split_cells(mesh, cut);
+  EXPECT_GT(split.duplicated_nodes, 0);
+  EXPECT_EQ(pieces(split.mesh), 1);
+  // Phantoms (copies extending a far side's field) may sit at the front; no
+  // material copy does, the node on the front least of all.
+  Index front_node_copies = 0;
+  for (Index k = mesh.node_count(); k < split.mesh.node_count(); ++k) {
+    if (!split.phantom[k]) {
+      EXPECT_LT(split.mesh.nodes[k].x(), 0.5 - 1e-12) << "node " << k;
+    }
+    front_node_copies += (split.mesh.nodes[k] - Vec3(0.5, 0.5, 0.5)).norm() < 1e-12;
+  }
+  EXPECT_EQ(front_node_copies, 0);
+}
+
+// A plane through nodes, and the same plane moved 1e-9 of a cell off them:
+// the split volumes move with it continuously (snapping keeps the cut on the
+// nodes; without it, the slivers the move makes are as thin as the move).
+TEST(CellSplit, MovingTheCutAHairOffTheNodesMovesTheAnswerAHair) {
+  const Mesh mesh = testing::kuhn_cubes(4, 0.25);
+  const Vec3 n(1, 2, 0);
+  for (const SplitOptions& options : {SplitOptions{}, exact}) {
+    const auto below = [&](double d) { return side_measures(split_cells(mesh, plane_pieces(n, d), options), mesh, n, d)[1]; };
+    const double on = below(1.5);
+    for (double shift : {-1e-9 * 0.25, 1e-9 * 0.25})
+      EXPECT_NEAR(below(1.5 + shift), on, 1e-8) << "snap " << options.snap << ", shift " << shift;
+  }
 }
 
 // A cut from the face x = 0 to x = 0.5 (its front inside the box): the body
