@@ -3,7 +3,6 @@
 #include "core/check.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/body_factory.h"
-#include "discretization/fem/fem_body.h"
 #include "discretization/state_transfer.h"
 
 namespace kerf {
@@ -77,11 +76,7 @@ void CutFollower::split_further(const CutsBySplitting& splitting, RunParts& run,
   replace_body(std::move(body), run, state, report);
   record_growth(report, start, updated, now_seconds());
   report.cuts.updated_nodes += added;
-  if (const auto* fem = dynamic_cast<const FemBody*>(run.body.get()); fem && fem->split()) {
-    report.cuts.split_cells = fem->split()->separated_cells;
-    report.cuts.duplicated_nodes = fem->split()->duplicated_nodes;
-    report.cuts.dropped_volume = fem->split()->dropped_measure;
-  }
+  record_split(*run.body, report);
 }
 
 void CutFollower::replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state,

@@ -108,7 +108,8 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
   ScopedTimer timer(report.phases, Phase::setup);
   if (scene.discretization.method != Method::fem) return make_meshless_body(scene, std::move(cuts), report);
-  // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh, `remove` ones delete cells.
+  // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
+  // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
   Mesh mesh = make_fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report);
   report.add_stage("mesh");
@@ -118,13 +119,18 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
   }
   const std::vector<CutPiece> split = cuts->fem_pieces(FemCut::split, time);
   auto body = std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene, *cuts), split);
-  if (const CellSplit* s = body->split()) {
-    report.cuts.split_cells = s->separated_cells;
-    report.cuts.duplicated_nodes = s->duplicated_nodes;
-    report.cuts.dropped_volume = s->dropped_measure;
-    report.add_stage("cells split");
-  }
+  record_split(*body, report);
   return body;
+}
+
+void record_split(const DiscreteBody& body, RunReport& report) {
+  const auto* fem = dynamic_cast<const FemBody*>(&body);
+  const CellSplit* split = fem ? fem->split() : nullptr;
+  if (!split) return;
+  report.cuts.split_cells = split->separated_cells;
+  report.cuts.duplicated_nodes = split->duplicated_nodes;
+  report.cuts.dropped_volume = split->dropped_measure;
+  report.add_stage("cells split");
 }
 
 }  // namespace kerf

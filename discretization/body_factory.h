@@ -18,4 +18,8 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
 /// The same, building the scene's cut timeline on the way (tests, studies).
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report);
 
+/// What a split by `fem: split` did to a FEM body as it stands (cells split,
+/// nodes added, volume dropped), into the report; nothing for other bodies.
+void record_split(const DiscreteBody& body, RunReport& report);
+
 }  // namespace kerf
