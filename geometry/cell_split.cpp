@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <optional>
 #include <unordered_map>
@@ -37,6 +38,20 @@ double crossing_on_piece(int dim, const CutPiece& piece, const Vec3& p, const Ve
   return t;
 }
 
+/// The piece nearest x (and its distance): 2D pieces are segments.
+std::size_t nearest_piece(int dim, std::span<const CutPiece> pieces, const Vec3& x, double* distance = nullptr) {
+  double nearest = std::numeric_limits<double>::infinity();
+  std::size_t which = 0;
+  for (std::size_t f = 0; f < pieces.size(); ++f) {
+    const CutPiece& p = pieces[f];
+    const std::array<Vec3, 3> facet = dim == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner;
+    const double d = distance_to_facets(x, std::span(&facet, 1));
+    if (d < nearest) nearest = d, which = f;
+  }
+  if (distance) *distance = nearest;
+  return which;
+}
+
 std::uint64_t edge_key(Index a, Index b) {
   return (static_cast<std::uint64_t>(std::min(a, b)) << 32) | static_cast<std::uint64_t>(std::max(a, b));
 }
@@ -53,8 +68,6 @@ class CutSides {
  public:
   CutSides(const Mesh& mesh, std::span<const CutPiece> pieces, const NodeCells& around, double snap)
       : mesh_(mesh), pieces_(pieces), side_(mesh.node_count(), 1) {
-    for (const CutPiece& p : pieces_)
-      facets_.push_back(mesh.dimension == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner);
     find_candidates();
     classify_corners(around, snap);
   }
@@ -121,7 +134,7 @@ class CutSides {
         done[n] = 1;
         const Vec3& x = mesh_.nodes[n];
         double nearest = 0.0;
-        const std::size_t which = nearest_piece(x, &nearest);
+        const std::size_t which = nearest_piece(mesh_.dimension, pieces_, x, &nearest);
         // A node on the cut to round-off lies on it whatever the snap: no side is its own.
         if (nearest <= std::max(snap, 1e-10) * shortest_edge(around, n)) {
           side_[n] = 0;
@@ -157,24 +170,11 @@ class CutSides {
     EdgeCrossing e;
     for (const CutPiece& piece : pieces_)
       if ((e.on_cut = crossing_on_piece(mesh_.dimension, piece, xp, xq)) >= 0.0) break;
-    const CutPiece& nearest = pieces_[nearest_piece(0.5 * (xp + xq))];
+    const CutPiece& nearest = pieces_[nearest_piece(mesh_.dimension, pieces_, 0.5 * (xp + xq))];
     const double dp = nearest.normal.dot(xp - nearest.corner[0]), dq = nearest.normal.dot(xq - nearest.corner[0]);
     if ((dp > 0 && dq < 0) || (dp < 0 && dq > 0)) e.on_plane = dp / (dp - dq);
     return crossings_.emplace(edge_key(a, b), e).first->second;
   }
-  /// The piece nearest x, and its distance.
-  std::size_t nearest_piece(const Vec3& x, double* distance = nullptr) const {
-    double nearest = std::numeric_limits<double>::infinity();
-    std::size_t which = 0;
-    for (std::size_t f = 0; f < facets_.size(); ++f) {
-      const double d = distance_to_facets(x, std::span(&facets_[f], 1));
-      if (d < nearest) nearest = d, which = f;
-    }
-    if (distance) *distance = nearest;
-    return which;
-  }
-
-  std::vector<std::array<Vec3, 3>> facets_;  // the pieces as facets (2D: a segment's end repeated)
   std::unordered_map<std::uint64_t, EdgeCrossing> crossings_;
 };
 
@@ -469,16 +469,9 @@ CellSplit Splitter::assemble(const std::vector<Index>& involved, Slots& slots) {
 }  // namespace
 
 int side_of_cut(int dimension, std::span<const CutPiece> pieces, const Vec3& x) {
-  double nearest = std::numeric_limits<double>::infinity();
-  const CutPiece* which = nullptr;
-  for (const CutPiece& p : pieces) {
-    const std::array<Vec3, 3> facet =
-        dimension == 2 ? std::array<Vec3, 3>{p.corner[0], p.corner[1], p.corner[1]} : p.corner;
-    const double d = distance_to_facets(x, std::span(&facet, 1));
-    if (d < nearest) nearest = d, which = &p;
-  }
-  if (!which) return 0;
-  const double s = which->normal.dot(x - which->corner[0]);
+  if (pieces.empty()) return 0;
+  const CutPiece& p = pieces[nearest_piece(dimension, pieces, x)];
+  const double s = p.normal.dot(x - p.corner[0]);
   return s > 0 ? 1 : s < 0 ? -1 : 0;
 }
 

@@ -92,7 +92,10 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
   std::vector<double> dN(npc_ * dim);
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
-    const QuadratureRule cell = cell_rule(c, rule, /*constant_integrand=*/mesh_.order == 1);
+    QuadratureRule own;  // a copy's rule on its fragment; a whole cell uses `rule` itself
+    const bool copy = split_ && !split_->whole(c);
+    if (copy) own = cell_rule(c, rule, /*constant_integrand=*/mesh_.order == 1);
+    const QuadratureRule& cell = copy ? own : rule;
     for (std::size_t q = 0; q < cell.points.size(); ++q) {
       simplex_shape_gradients(dim, mesh_.order, cell.points[q], dN.data());
       Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);  // dX/dxi
@@ -472,7 +475,10 @@ void FemBody::visit_couplings(const CouplingVisitor& visit) const {
 
 Eigen::MatrixXd FemBody::element_scalar_mass(Index c, bool whole) const {
   const int dim = mesh_.dimension;
-  const QuadratureRule rule = whole ? mass_rule_ : cell_rule(c, mass_rule_);
+  QuadratureRule own;  // a copy's mass rule on its fragment; a whole cell uses mass_rule_ itself
+  const bool copy = !whole && split_ && !split_->whole(c);
+  if (copy) own = cell_rule(c, mass_rule_);
+  const QuadratureRule& rule = copy ? own : mass_rule_;
   auto nodes = mesh_.cell(c);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(npc_, npc_);
   std::vector<double> N(npc_), dN(npc_ * dim);
