@@ -49,7 +49,9 @@ json solver_counters(const RunReport& report) {
               {"cut_updated_points", c.updated_points},
               {"cut_split_cells", c.split_cells},
               {"cut_duplicated_nodes", c.duplicated_nodes},
-              {"cut_dropped_volume", c.dropped_volume}};
+              {"cut_dropped_volume", c.dropped_volume},
+              {"cut_front_points", c.front_points},
+              {"cut_front_unresolved", c.front_unresolved}};
   if (s.smallest_increment) out["smallest_increment"] = *s.smallest_increment;
   if (s.critical_dt_s) out["critical_dt_s"] = *s.critical_dt_s;
   if (s.critical_dt_element_bound_s) out["critical_dt_element_bound_s"] = *s.critical_dt_element_bound_s;

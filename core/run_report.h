@@ -69,6 +69,9 @@ struct CutCounters {
   long split_cells = 0;        // cells the cut separates (each replaced by one copy per side)
   long duplicated_nodes = 0;   // nodes added as copies
   double dropped_volume = 0.0; // m^3 (2D: m^2) of fragments too small to keep (split_elements.md 3.4)
+  // fem.split_front: subdivide:
+  long front_points = 0;        // points of the front inserted into the mesh, over every growth
+  long front_unresolved = 0;    // front segments not made edges, in the body as it stands (the jump lags there)
 };
 
 struct RunReport {

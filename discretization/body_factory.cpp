@@ -130,6 +130,10 @@ void record_split(const DiscreteBody& body, RunReport& report) {
   report.cuts.split_cells = split->separated_cells;
   report.cuts.duplicated_nodes = split->duplicated_nodes;
   report.cuts.dropped_volume = split->dropped_measure;
+  if (const FrontRefinement* front = fem->front()) {
+    report.cuts.front_points += front->front_points;
+    report.cuts.front_unresolved = front->unresolved_segments;
+  }
   report.add_stage("cells split");
 }
 

@@ -61,8 +61,9 @@ enum class GridLookup { exact, interpolated };
 enum class FemCut { remesh, remove, split };
 /// fem: split's cells that the cut's front passes through: left whole (the
 /// papers' rule: the jump ends about a cell behind the front), or split along
-/// the nearest piece's plane (the jump reaches about a cell past it).
-enum class SplitFront { lag, over };
+/// the nearest piece's plane (the jump reaches about a cell past it), or
+/// subdivided so that the front runs along their edges (the jump ends on it).
+enum class SplitFront { lag, over, subdivide };
 enum class ProbeField { displacement, reaction, indentation, contact_force, energy };
 
 struct BoundaryCondition {
@@ -283,7 +284,7 @@ KERF_ENUM_NAMES(TangentKind, "exact", "definite", "auto");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
 KERF_ENUM_NAMES(GridLookup, "exact", "interpolated");
 KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
-KERF_ENUM_NAMES(SplitFront, "lag", "over");
+KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
 

@@ -57,13 +57,22 @@ SplitOptions split_options(const Scene& scene) {
   options.over_cut = scene.discretization.fem.split_front == SplitFront::over;
   return options;
 }
+
+/// fem.split_front: subdivide: the mesh refined along the pieces' front.
+std::optional<FrontRefinement> front_refinement(const Scene& scene, const Mesh& mesh,
+                                                std::span<const CutPiece> pieces) {
+  if (pieces.empty() || scene.discretization.fem.split_front != SplitFront::subdivide) return std::nullopt;
+  return refine_front(mesh, pieces);
+}
 }  // namespace
 
 FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : FemBody(Ordered{}, scene, ordered_for_locality(std::move(mesh)), share, split_along) {}
 
+
 FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
-    : original_(std::move(mesh)),
+    : front_(front_refinement(scene, mesh, split_along)),
+      original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
       split_(split_along.empty() ? std::nullopt
                                  : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
       split_pieces_(split_along.begin(), split_along.end()),
@@ -136,20 +145,23 @@ std::unique_ptr<DiscreteBody> FemBody::split_along(const Scene& scene, std::span
 
 Vector FemBody::carried_to(const DiscreteBody& next_body, const Vector& field) const {
   const auto* next = dynamic_cast<const FemBody*>(&next_body);
-  KERF_CHECK(next && next->outline().cell_count() == outline().cell_count() &&
-                 next->outline().node_count() == outline().node_count(),
+  const FrontRefinement* refined = next ? next->front() : nullptr;
+  KERF_CHECK(next && (refined ? refined->parent.size() == static_cast<std::size_t>(next->outline().cell_count())
+                              : next->outline().cell_count() == outline().cell_count() &&
+                                    next->outline().node_count() == outline().node_count()),
              "internal: a split body's state carried to a body on another mesh");
   const int dim = mesh_.dimension;
+  std::vector<double> N(npc_);
   Vector out = Vector::Zero(next->dof_count());
   for (Index c = 0; c < next->mesh_.cell_count(); ++c) {
-    const Index parent = next->split_ ? next->split_->parent[c] : c;
-    // This body's copy of the parent holding the new fragment (cuts only grow:
-    // it lies in one old fragment); a point inside its first sub-simplex tells.
+    const Index cell = next->split_ ? next->split_->parent[c] : c;  // in next's outline
+    const Index parent = refined ? refined->parent[cell] : cell;     // in this body's outline
+    const bool child = refined && refined->child(cell);
+    // This body's copy of the parent holding the new copy (cuts only grow: it
+    // lies in one old fragment); a point inside it tells.
     auto [from, last] = copies_of(parent);
-    if (last - from > 1 && next->split_ && !next->split_->whole(c)) {
-      const auto fragment = next->split_->fragment(c);
-      Vec3 inside = Vec3::Zero();
-      for (int k = 0; k <= dim; ++k) inside += fragment[k] / (dim + 1);
+    if (last - from > 1) {
+      const Vec3 inside = point_in_parent(*next, c, child ? refined->child_reference(cell) : std::span<const Vec3>{});
       for (Index old = from; old < last; ++old)
         if (fragment_holds(dim, split_->fragment(old), inside)) {
           from = old;
@@ -157,10 +169,36 @@ Vector FemBody::carried_to(const DiscreteBody& next_body, const Vector& field) c
         }
     }
     const auto to_nodes = next->mesh_.cell(c), from_nodes = mesh_.cell(from);
-    for (int a = 0; a < npc_; ++a)
-      for (int i = 0; i < dim; ++i) out[dim * to_nodes[a] + i] = field[dim * from_nodes[a] + i];
+    for (int a = 0; a < npc_; ++a) {
+      if (!child) {
+        for (int i = 0; i < dim; ++i) out[dim * to_nodes[a] + i] = field[dim * from_nodes[a] + i];
+        continue;
+      }
+      // A child of a front cell: the parent's field where its node lies.
+      simplex_shape_values(dim, mesh_.order, refined->child_reference(cell)[a], N.data());
+      for (int i = 0; i < dim; ++i) {
+        double value = 0.0;
+        for (int b = 0; b < npc_; ++b) value += N[b] * field[dim * from_nodes[b] + i];
+        out[dim * to_nodes[a] + i] = value;
+      }
+    }
   }
   return out;
+}
+
+Vec3 FemBody::point_in_parent(const FemBody& next, Index c, std::span<const Vec3> child_reference) const {
+  const int dim = mesh_.dimension;
+  Vec3 inside = Vec3::Constant(1.0 / (dim + 1));  // the cell's centroid, unless it is a copy
+  if (dim == 2) inside.z() = 0.0;
+  if (next.split_ && !next.split_->whole(c)) {
+    const auto fragment = next.split_->fragment(c);
+    inside.setZero();
+    for (int k = 0; k <= dim; ++k) inside += fragment[k] / (dim + 1);
+  }
+  if (child_reference.empty()) return inside;
+  Vec3 in_parent = child_reference[0];  // the child's corners' affine map into its parent
+  for (int k = 0; k < dim; ++k) in_parent += inside[k] * (child_reference[k + 1] - child_reference[0]);
+  return in_parent;
 }
 
 std::pair<Index, Index> FemBody::copies_of(Index p) const {

@@ -9,6 +9,7 @@
 #include "core/rank_share.h"
 #include "core/run_report.h"
 #include "discretization/body_capabilities.h"
+#include "discretization/fem/front_refinement.h"
 #include "discretization/fem/nodal_bulk_average.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "geometry/boundary_facets.h"
@@ -38,6 +39,9 @@ class FemBody final : public DiscreteBody,
 
   /// The split (fem: split), or null.
   const CellSplit* split() const { return split_ ? &*split_ : nullptr; }
+  /// fem.split_front: subdivide: how the mesh given was refined along the
+  /// cut's front before the split (its mesh moved into outline()), or null.
+  const FrontRefinement* front() const { return front_ ? &*front_ : nullptr; }
   std::unique_ptr<DiscreteBody> split_along(const Scene& scene, std::span<const CutPiece> pieces) const override;
   Vector carried_to(const DiscreteBody& next, const Vector& field) const override;
 
@@ -111,7 +115,12 @@ class FemBody final : public DiscreteBody,
   QuadratureRule cell_rule(Index c, const QuadratureRule& whole, bool constant_integrand = false) const;
   /// Each cell's Cauchy stress, the mean over its stiffness points.
   std::vector<Mat3> cell_stresses(const Vector& u) const;
-  /// The mesh as read: facets, selections and probes live on it.
+  /// A point inside next's cell c (a copy of a child when child_reference is
+  /// given: its nodes' coordinates in the parent), in the reference
+  /// coordinates of its parent in this body's outline.
+  Vec3 point_in_parent(const FemBody& next, Index c, std::span<const Vec3> child_reference) const;
+  /// The mesh as read (refined along the front by split_front: subdivide):
+  /// facets, selections and probes live on it.
   const Mesh& outline() const { return split_ ? original_ : mesh_; }
   /// The node of cell c (a copy of `parent`) at the parent's node `node`.
   Index copy_node(Index c, Index parent, Index node) const;
@@ -131,7 +140,8 @@ class FemBody final : public DiscreteBody,
   /// This rank's cells, rows and touched nodes; the whole mesh on one rank.
   void share_cells(RankShare share);
 
-  Mesh original_;                    // fem: split: the mesh as read (else moved into mesh_)
+  std::optional<FrontRefinement> front_;  // split_front: subdivide: the given mesh's refinement
+  Mesh original_;                    // fem: split: the mesh as read, or as refined along the front (else moved into mesh_)
   std::optional<CellSplit> split_;   // fem: split: the copies' parents, fragments, node origins
   std::vector<CutPiece> split_pieces_;  // fem: split: the cut as given (a probe's side)
   Mesh mesh_;                        // the cells integrated (copies, with fem: split)

@@ -37,20 +37,22 @@ CutPiece triangle_piece(const Vec3& a, const Vec3& b, const Vec3& c) {
   return p;
 }
 
-std::vector<CutPiece> plane_cut(int dimension, const Vec3& n, double d, double reach) {
+namespace {
+/// The plane n . x = d over y in [y0, y1] (3D: and z in [z0, z1]; 2D: the
+/// line at z = 0), its pieces' normal along n.
+std::vector<CutPiece> plane_pieces(int dimension, const Vec3& n, double d, double y0, double y1, double z0, double z1) {
   const auto at = [&](double y, double z) { return Vec3((d - n.y() * y - n.z() * z) / n.x(), y, z); };
-  const double lo = -reach, hi = 1 + reach;
   std::vector<CutPiece> pieces;
   if (dimension == 2) {
     CutPiece line;
-    line.corner = {at(lo, 0), at(hi, 0), Vec3::Zero()};
+    line.corner = {at(y0, 0), at(y1, 0), Vec3::Zero()};
     const Vec3 t = line.corner[1] - line.corner[0];
     line.normal = Vec3(-t.y(), t.x(), 0).normalized();
     line.size = t.norm();
     line.centre = 0.5 * (line.corner[0] + line.corner[1]);
     pieces.push_back(line);
   } else {
-    pieces = {triangle_piece(at(lo, lo), at(hi, lo), at(hi, hi)), triangle_piece(at(lo, lo), at(hi, hi), at(lo, hi))};
+    pieces = {triangle_piece(at(y0, z0), at(y1, z0), at(y1, z1)), triangle_piece(at(y0, z0), at(y1, z1), at(y0, z1))};
   }
   if (pieces[0].normal.dot(n) < 0)
     for (CutPiece& p : pieces) {
@@ -58,6 +60,15 @@ std::vector<CutPiece> plane_cut(int dimension, const Vec3& n, double d, double r
       p.normal = -p.normal;
     }
   return pieces;
+}
+}  // namespace
+
+std::vector<CutPiece> plane_cut(int dimension, const Vec3& n, double d, double reach) {
+  return plane_pieces(dimension, n, d, -reach, 1 + reach, -reach, 1 + reach);
+}
+
+std::vector<CutPiece> plane_cut_above(int dimension, const Vec3& n, double d, double front) {
+  return dimension == 2 ? plane_pieces(2, n, d, front, 1.5, 0, 0) : plane_pieces(3, n, d, -0.5, 1.5, front, 1.5);
 }
 
 std::vector<int> node_pieces(const Mesh& mesh) {

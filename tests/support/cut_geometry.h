@@ -21,6 +21,11 @@ CutPiece triangle_piece(const Vec3& a, const Vec3& b, const Vec3& c);
 /// n . x = d as one segment over y in [-reach, 1 + reach], its normal along n.
 std::vector<CutPiece> plane_cut(int dimension, const Vec3& n, double d, double reach = 0.5);
 
+/// The part of that plane above the front z = front (2D: of the line above
+/// y = front), reaching past the unit box elsewhere: a cut with a front
+/// inside the box.
+std::vector<CutPiece> plane_cut_above(int dimension, const Vec3& n, double d, double front);
+
 /// Each node's piece: the groups of cells joined through shared nodes,
 /// numbered from 0 in the order of their lowest node (nodes of no cell: -1).
 std::vector<int> node_pieces(const Mesh& mesh);

@@ -22,6 +22,9 @@ void write_organ_mesh(const std::string& path, double size_left, double size_rig
   std::vector<std::vector<std::pair<int, int>>> map;
   gmsh::model::occ::cut({{3, sphere}}, {{3, below}}, kept, map);
   gmsh::model::occ::synchronize();
+  // The size field alone: a box meshed before in this process leaves its size bounds set.
+  gmsh::option::setNumber("Mesh.MeshSizeMin", 0.0);
+  gmsh::option::setNumber("Mesh.MeshSizeMax", 1e22);
   gmsh::option::setNumber("Mesh.MeshSizeFromPoints", 0);
   gmsh::option::setNumber("Mesh.MeshSizeFromCurvature", 0);
   gmsh::option::setNumber("Mesh.MeshSizeExtendFromBoundary", 0);
