@@ -69,7 +69,6 @@ std::optional<FrontRefinement> front_refinement(const Scene& scene, const Mesh& 
 FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : FemBody(Ordered{}, scene, ordered_for_locality(std::move(mesh)), share, split_along) {}
 
-
 FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : front_(front_refinement(scene, mesh, split_along)),
       original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
