@@ -56,8 +56,10 @@ void CutFollower::rebuild(RunParts& run, SolverState& state, RunReport& report) 
   state.u = transfer(state.u);
   state.v = transfer(state.v);
   state.a = transfer(state.a);
+  const Vector old_mode = run.stepper->vibration_mode();
+  const Vector mode = old_mode.size() > 0 ? transfer(old_mode) : Vector();
   const double updated = now_seconds();
-  replace_body(std::move(body), run, state, report);
+  replace_body(std::move(body), run, state, mode, report);
   record_growth(report, start, updated, now_seconds());
   report.cuts.removed_cells += rebuild_report.cuts.removed_cells;
   report.cuts.remeshes += 1;
@@ -71,19 +73,21 @@ void CutFollower::split_further(const CutsBySplitting& splitting, RunParts& run,
   state.u = splitting.carried_to(*body, state.u);
   state.v = splitting.carried_to(*body, state.v);
   state.a = splitting.carried_to(*body, state.a);
+  const Vector old_mode = run.stepper->vibration_mode();
+  const Vector mode = old_mode.size() > 0 ? splitting.carried_to(*body, old_mode) : Vector();
   const double updated = now_seconds();
   const Index added = body->node_count() - run.body->node_count();
-  replace_body(std::move(body), run, state, report);
+  replace_body(std::move(body), run, state, mode, report);
   record_growth(report, start, updated, now_seconds());
   report.cuts.updated_nodes += added;
   record_split(*run.body, report);
 }
 
 void CutFollower::replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state,
-                               RunReport& report) const {
+                               const Vector& carried_mode, RunReport& report) const {
   run.stepper.reset();
   run.mechanics = std::make_unique<MechanicalSystem>(*body, scene_, report);
-  run.stepper = make_stepper(*run.mechanics, scene_, report);
+  run.stepper = make_stepper(*run.mechanics, scene_, report, carried_mode);
   run.stepper->discretization_changed(state);
   run.body = std::move(body);
 }

@@ -32,7 +32,9 @@ class CutFollower {
   void rebuild(RunParts& run, SolverState& state, RunReport& report) const;
   void split_further(const CutsBySplitting& body, RunParts& run, SolverState& state, RunReport& report) const;
   /// The mechanical system and stepper made again on the new body, which takes the run's place.
-  void replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state, RunReport& report) const;
+  /// carried_mode: the old stepper's vibration mode carried to `body` (empty: none).
+  void replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state, const Vector& carried_mode,
+                    RunReport& report) const;
 
   const Scene& scene_;
   SharedCuts cuts_;

@@ -11,7 +11,8 @@ namespace kerf {
 /// dt_crit = (2 / omega) (sqrt(1 + xi^2) - xi), xi = beta omega / 2.
 double damped_critical_step(double undamped_step, double beta);
 
+/// carried_mode: see make_stepper.
 std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const Scene& scene,
-                                                         RunReport& report);
+                                                         RunReport& report, const Vector& carried_mode = {});
 
 }  // namespace kerf

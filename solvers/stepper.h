@@ -37,10 +37,19 @@ class Stepper {
   /// The time step the run uses (s); static: 1 / load_steps.
   virtual double time_step() const = 0;
   virtual int step_count() const = 0;
+  /// The fastest vibration mode the last critical-step estimate found, over
+  /// all dofs (explicit schemes; empty for the others): a body that replaces
+  /// this one (a cut grew) carries it over like a displacement, and the next
+  /// stepper's estimate starts from it.
+  virtual Vector vibration_mode() const { return {}; }
 };
 
 /// Picks static, implicit Euler, Newmark or central differences from the scene.
 /// Refuses an explicit dt above the critical estimate, naming the estimate.
-std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report);
+/// With `carried_mode` (a previous stepper's vibration_mode() carried to this
+/// body), the stepper continues a run whose body was replaced: an explicit one
+/// estimates its critical step in discretization_changed, from that mode.
+std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report,
+                                      const Vector& carried_mode = {});
 
 }  // namespace kerf

@@ -72,8 +72,10 @@ void expect_cut_open_and_energy_bounded(const json& s) {
 TEST(SplitScenes, TheOrganIsCutExplicitlyWhileItSags) {
   const json s = organ_cut("explicit", {"discretization.fem.element=tet4"});
   expect_cut_open_and_energy_bounded(s);
+  // After a growth the estimate starts from the carried mode and stops at a
+  // 1e-4 residual (solvers/central_difference.cpp): 4.1e-5 apart measured.
   EXPECT_NEAR(s["solver"]["critical_dt_min_s"].get<double>(), s["solver"]["critical_dt_s"].get<double>(),
-              1e-6 * s["solver"]["critical_dt_s"].get<double>());  // power iterations: 5e-9 apart measured
+              1e-4 * s["solver"]["critical_dt_s"].get<double>());
 }
 
 // Implicit (Euler, tet10 raised from the linear file): the same cut, the
