@@ -69,16 +69,17 @@ std::optional<FrontRefinement> front_refinement(const Scene& scene, const Mesh& 
 FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : FemBody(Ordered{}, scene, ordered_for_locality(std::move(mesh)), share, split_along) {}
 
-FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
+FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
+                 const FemBody* previous)
     : front_(front_refinement(scene, mesh, split_along)),
       original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
       split_(split_along.empty() ? std::nullopt
                                  : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
       split_pieces_(split_along.begin(), split_along.end()),
       mesh_(split_ ? std::move(split_->mesh) : std::move(original_)),
-      facets_(boundary_facets(outline())),
-      on_boundary_(boundary_node_flags(outline(), facets_)),
-      locator_(outline()),
+      facets_(previous && !front_ ? previous->facets_ : boundary_facets(outline())),
+      on_boundary_(previous && !front_ ? previous->on_boundary_ : boundary_node_flags(outline(), facets_)),
+      locator_(previous && !front_ ? previous->locator_ : CellLocator(outline())),
       law_(scene.material),
       density_(scene.material.density) {
   const int dim = mesh_.dimension;
@@ -139,7 +140,7 @@ QuadratureRule FemBody::cell_rule(Index c, const QuadratureRule& whole, bool con
 }
 
 std::unique_ptr<DiscreteBody> FemBody::split_along(const Scene& scene, std::span<const CutPiece> pieces) const {
-  return std::unique_ptr<DiscreteBody>(new FemBody(Ordered{}, scene, outline(), share_, pieces));
+  return std::unique_ptr<DiscreteBody>(new FemBody(Ordered{}, scene, outline(), share_, pieces, this));
 }
 
 Vector FemBody::carried_to(const DiscreteBody& next_body, const Vector& field) const {

@@ -81,7 +81,11 @@ class FemBody final : public DiscreteBody,
  private:
   /// `mesh` already in locality order (a body split again keeps its mesh as read).
   struct Ordered {};
-  FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along);
+  /// `previous`: a body on the same outline whose facets and locator are
+  /// taken instead of built again (a growing cut's next split; not with
+  /// split_front: subdivide, whose outline changes).
+  FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
+          const FemBody* previous = nullptr);
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
   /// The bulk measure's state for one displacement: each cell's own m_e and
