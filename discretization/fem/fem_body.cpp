@@ -94,6 +94,14 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
   npc_ = mesh_.nodes_per_cell();
   mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
   const QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
+  integrate_cells(rule, previous && !front_ ? previous : nullptr);
+  if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
+  build_loads(scene);
+  build_constraints(scene);
+}
+
+void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previous) {
+  const int dim = mesh_.dimension;
   const Index C = mesh_.cell_count();
   point_start_.assign(1, 0);
   grad_.reserve(static_cast<std::size_t>(C) * rule.points.size() * npc_ * dim);
@@ -103,6 +111,10 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
     auto nodes = mesh_.cell(c);
     QuadratureRule own;  // a copy's rule on its fragment; a whole cell uses `rule` itself
     const bool copy = split_ && !split_->whole(c);
+    if (!copy && previous && previous->take_whole_cell(split_ ? split_->parent[c] : c, grad_, wdet_)) {
+      point_start_.push_back(static_cast<Index>(wdet_.size()));
+      continue;
+    }
     if (copy) own = cell_rule(c, rule, /*constant_integrand=*/mesh_.order == 1);
     const QuadratureRule& cell = copy ? own : rule;
     for (std::size_t q = 0; q < cell.points.size(); ++q) {
@@ -125,9 +137,15 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
     }
     point_start_.push_back(static_cast<Index>(wdet_.size()));
   }
-  if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
-  build_loads(scene);
-  build_constraints(scene);
+}
+
+bool FemBody::take_whole_cell(Index parent, std::vector<double>& grad, std::vector<double>& wdet) const {
+  const auto [first, last] = copies_of(parent);
+  if (last - first != 1 || (split_ && !split_->whole(first))) return false;
+  const std::size_t per_point = static_cast<std::size_t>(npc_) * mesh_.dimension;
+  grad.insert(grad.end(), grad_.begin() + point_start_[first] * per_point, grad_.begin() + point_start_[last] * per_point);
+  wdet.insert(wdet.end(), wdet_.begin() + point_start_[first], wdet_.begin() + point_start_[last]);
+  return true;
 }
 
 QuadratureRule FemBody::cell_rule(Index c, const QuadratureRule& whole, bool constant_integrand) const {

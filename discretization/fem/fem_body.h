@@ -117,6 +117,12 @@ class FemBody final : public DiscreteBody,
   /// copy, `whole` moved onto its fragment (tet4/tri3 stiffness: one point,
   /// the gradients being constant).
   QuadratureRule cell_rule(Index c, const QuadratureRule& whole, bool constant_integrand = false) const;
+  /// Each cell's shape-function gradients and weights at its points
+  /// (`rule`, or a copy's rule on its fragment); whole cells that were whole
+  /// in `previous` (the same outline) take its figures.
+  void integrate_cells(const QuadratureRule& rule, const FemBody* previous);
+  /// Appends the figures of the parent's cell if it is whole here; false if it is split.
+  bool take_whole_cell(Index parent, std::vector<double>& grad, std::vector<double>& wdet) const;
   /// Each cell's Cauchy stress, the mean over its stiffness points.
   std::vector<Mat3> cell_stresses(const Vector& u) const;
   /// A point inside next's cell c (a copy of a child when child_reference is
