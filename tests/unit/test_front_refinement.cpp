@@ -148,6 +148,30 @@ TEST_P(FrontRefinementTest, TheSplitThatFollowsEndsOnTheFront) {
   EXPECT_GT(behind, 10);
 }
 
+// Degenerate placements on Kuhn cubes, whose lattice planes hold nodes and
+// edges: a front along mesh edges through nodes (the plane x = 0.5 above z =
+// 0.5: it inserts nothing, the front already is edges), and a front lying in
+// a lattice plane of faces while crossing the others at their edges (x + 0.3 y
+// = 0.6 above z = 0.5: edge points only). Each stays conforming, keeps the
+// volume and makes the front edges, its points on the front line.
+TEST(FrontRefinement, DegeneratePlacementsStayConformingAndEndOnTheFront) {
+  const Mesh mesh = testing::kuhn_cubes(4, 0.25);
+  for (const FrontCut& cut : {FrontCut{Vec3(1, 0, 0), 0.5, 0.5}, FrontCut{Vec3(1, 0.3, 0), 0.6, 0.5}}) {
+    const FrontRefinement r = refine_front(mesh, cut.pieces(3));
+    EXPECT_GT(r.front_segments, 3);
+    EXPECT_EQ(r.unresolved_segments, 0);
+    EXPECT_NEAR(total_measure(r.mesh), total_measure(mesh), 1e-12);
+    EXPECT_NEAR(expect_conforming(r.mesh), expect_conforming(mesh), 1e-12);
+    for (std::size_t p = 0; p < r.mesh.nodes.size(); ++p)
+      if (r.input_node[p] < 0) {  // an inserted point lies on the front line
+        EXPECT_NEAR(r.mesh.nodes[p].z(), 0.5, 1e-12);
+        EXPECT_NEAR(cut.phi(r.mesh.nodes[p]), 0.0, 1e-12);
+      }
+    if (cut.n.y() == 0) EXPECT_EQ(r.subdivided_cells, 0) << "the front already runs along edges";
+    else EXPECT_GT(r.subdivided_cells, 0);
+  }
+}
+
 const Case cases[] = {{3, 1, 0.21}, {3, 2, 0.21}, {3, 1, 0.13}, {2, 1, 0.13}, {2, 2, 0.13}};
 INSTANTIATE_TEST_SUITE_P(Meshes, FrontRefinementTest, ::testing::ValuesIn(cases), [](const auto& info) {
   const Case& c = info.param;
