@@ -32,32 +32,26 @@ struct Segment {
 /// polyline ends no other piece shares (pieces of a cut share corners exactly).
 std::vector<Segment> front_of(int dim, std::span<const CutPiece> pieces) {
   std::vector<Segment> out;
-  const auto segment = [&](const Vec3& a, const Vec3& b, std::size_t) { out.push_back({a, b}); };
   if (dim == 2) {
-    std::map<Vec3, std::pair<int, std::size_t>, VecLess> uses;  // end -> (uses, a piece)
-    for (std::size_t p = 0; p < pieces.size(); ++p)
-      for (int k = 0; k < 2; ++k) {
-        auto& u = uses[pieces[p].corner[k]];
-        ++u.first, u.second = p;
-      }
-    for (const auto& [x, u] : uses)
-      if (u.first == 1) segment(x, x, u.second);
+    std::map<Vec3, int, VecLess> uses;
+    for (const CutPiece& p : pieces) ++uses[p.corner[0]], ++uses[p.corner[1]];
+    for (const auto& [x, n] : uses)
+      if (n == 1) out.push_back({x, x});
     return out;
   }
   const auto less = [](const std::pair<Vec3, Vec3>& p, const std::pair<Vec3, Vec3>& q) {
     const VecLess v;
     return v(p.first, q.first) || (!v(q.first, p.first) && v(p.second, q.second));
   };
-  std::map<std::pair<Vec3, Vec3>, std::pair<int, std::size_t>, decltype(less)> uses(less);
-  for (std::size_t p = 0; p < pieces.size(); ++p)
+  std::map<std::pair<Vec3, Vec3>, int, decltype(less)> uses(less);
+  for (const CutPiece& p : pieces)
     for (int k = 0; k < 3; ++k) {
-      Vec3 a = pieces[p].corner[k], b = pieces[p].corner[(k + 1) % 3];
+      Vec3 a = p.corner[k], b = p.corner[(k + 1) % 3];
       if (VecLess{}(b, a)) std::swap(a, b);
-      auto& u = uses[{a, b}];
-      ++u.first, u.second = p;
+      ++uses[{a, b}];
     }
-  for (const auto& [edge, u] : uses)
-    if (u.first == 1) segment(edge.first, edge.second, u.second);
+  for (const auto& [edge, n] : uses)
+    if (n == 1) out.push_back({edge.first, edge.second});
   return out;
 }
 
