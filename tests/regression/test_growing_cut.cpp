@@ -74,7 +74,7 @@ TEST(GrowingCut, RunsOneHundredStepsWithBoundedEnergyAndTimesEveryGrowth) {
   ASSERT_GT(reached, 19 * 20);
   EXPECT_GE(s["solver"]["cut_updated_nodes"].get<double>(), reached);
   EXPECT_GE(s["solver"]["cut_updated_points"].get<double>(), s["solver"]["cut_updated_nodes"].get<double>());
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut/probes.csv");
+  const auto rows = read_probes(testing::output_path("growing_cut") + "/probes.csv");
   ASSERT_EQ(rows.size(), 101u);
   expect_stored_energy_within_the_work(rows);
   const double opening = rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy");
@@ -101,7 +101,7 @@ TEST(GrowingCut, ATipStoppingNextToANodeLeavesTheCriticalStep) {
   EXPECT_GT(solver["critical_dt_s"].get<double>(), 2e-5);  // the scene's dt
   EXPECT_GT(solver["critical_dt_min_s"].get<double>(), 0.95 * solver["critical_dt_s"].get<double>());
   EXPECT_EQ(solver["substeps_max"].get<int>(), 1);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_tip_by_a_node/probes.csv");
+  const auto rows = read_probes(testing::output_path("growing_cut_tip_by_a_node") + "/probes.csv");
   ASSERT_EQ(rows.size(), 51u);
   expect_stored_energy_within_the_work(rows);
 }
@@ -133,7 +133,7 @@ TEST(GrowingCut, ABladeThroughANodeOfACurvedMeshKeepsAStableStep) {
   const json& solver = s["solver"];
   EXPECT_GT(solver["critical_dt_min_s"].get<double>(), 5e-4);  // the scene's dt
   EXPECT_EQ(solver["substeps_max"].get<int>(), 1);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/organ_cut/probes.csv");
+  const auto rows = read_probes(testing::output_path("organ_cut") + "/probes.csv");
   ASSERT_EQ(rows.size(), 601u);
   expect_stored_energy_within_the_work(rows);
   EXPECT_GT(rows.back().at("face_plus_uy") - rows.back().at("face_minus_uy"), 1e-3);
@@ -150,7 +150,7 @@ TEST(GrowingCut, EfgImplicitCutsTheOrganWithBoundedEnergy) {
                                    "organ_cut_efg");
   ASSERT_EQ(s["status"], "ok") << s["error"];
   EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 3);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/organ_cut_efg/probes.csv");
+  const auto rows = read_probes(testing::output_path("organ_cut_efg") + "/probes.csv");
   ASSERT_EQ(rows.size(), 18u);
   expect_stored_energy_within_the_work(rows, "efg");
   EXPECT_GT(rows.back().at("face_plus_uy") - rows.back().at("face_minus_uy"), 5e-4);
@@ -174,7 +174,7 @@ TEST(GrowingCut, ABladeShavingTheOrgansCapKeepsAStableStepAndLetsTheCapFall) {
   EXPECT_GT(solver["critical_dt_min_s"].get<double>(), 0.5 * solver["critical_dt_s"].get<double>());
   EXPECT_LT(solver["mls_condition_near_cut_max"].get<double>(), 1e3);
   EXPECT_EQ(solver["substeps_max"].get<int>(), 1);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/organ_shave/probes.csv");
+  const auto rows = read_probes(testing::output_path("organ_shave") + "/probes.csv");
   ASSERT_EQ(rows.size(), 801u);
   expect_stored_energy_within_the_work(rows);
   EXPECT_LT(rows.back().at("cap_uz"), -0.1);
@@ -191,7 +191,7 @@ TEST(GrowingCut, EfgImplicitShavesTheOrgansCapWithBoundedEnergy) {
                                    "organ_shave_efg");
   ASSERT_EQ(s["status"], "ok") << s["error"];
   EXPECT_GT(s["solver"]["mls_reduced_basis_points"].get<double>(), 0.0);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/organ_shave_efg/probes.csv");
+  const auto rows = read_probes(testing::output_path("organ_shave_efg") + "/probes.csv");
   ASSERT_EQ(rows.size(), 33u);
   expect_stored_energy_within_the_work(rows, "efg");
   EXPECT_LT(rows.back().at("cap_uz"), -0.05);
@@ -209,7 +209,7 @@ TEST(GrowingCut, ExplicitRunTakesSubstepsWhenAGrowthLowersTheCriticalStep) {
   EXPECT_GT(solver["critical_dt_s"].get<double>(), dt);
   EXPECT_LT(solver["critical_dt_min_s"].get<double>(), dt);
   EXPECT_GE(solver["substeps_max"].get<int>(), 2);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/organ_cut_substeps/probes.csv");
+  const auto rows = read_probes(testing::output_path("organ_cut_substeps") + "/probes.csv");
   ASSERT_EQ(rows.size(), 251u);
   expect_stored_energy_within_the_work(rows);
 }
@@ -239,7 +239,7 @@ TEST(GrowingCut, FemRemeshesOrRemovesCellsAsTheCutGrows) {
     ASSERT_EQ(s["status"], "ok") << fem;
     EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 19) << fem;
     EXPECT_EQ(s["solver"]["cut_remeshes"], 19) << fem;
-    const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/" + name + "/probes.csv");
+    const auto rows = read_probes(testing::output_path(name) + "/probes.csv");
     ASSERT_EQ(rows.size(), 101u);
     expect_stored_energy_within_the_work(rows, fem);
     const double opening = rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy");
@@ -334,7 +334,7 @@ TEST(GrowingCut, SmoothedGradientsRunOneHundredStepsWithBoundedEnergy) {
                                    "growing_cut_smoothed");
   ASSERT_EQ(s["status"], "ok");
   EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 19);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_smoothed/probes.csv");
+  const auto rows = read_probes(testing::output_path("growing_cut_smoothed") + "/probes.csv");
   ASSERT_EQ(rows.size(), 101u);
   expect_stored_energy_within_the_work(rows);
   EXPECT_GT(rows.back().at("upper_face_uy") - rows.back().at("lower_face_uy"), 500.0 * 1000.0 / 1e6 * 2e-5);
@@ -441,7 +441,7 @@ TEST(GrowingCut, EfgRunsTheCuttingSceneWithBoundedEnergy) {
                                    "growing_cut_efg");
   ASSERT_EQ(s["status"], "ok");
   EXPECT_EQ(s["timing"]["cut_update_ms"]["count"], 19);
-  const auto rows = read_probes(std::string(KERF_BINARY_DIR) + "/test_output/growing_cut_efg/probes.csv");
+  const auto rows = read_probes(testing::output_path("growing_cut_efg") + "/probes.csv");
   ASSERT_EQ(rows.size(), 201u);
   expect_stored_energy_within_the_work(rows, "efg");
   EXPECT_GT(crack_opening(s), 500.0 * 1000.0 / 1e6 * 2e-5);  // 500 times what the uncut strain gives

@@ -163,7 +163,7 @@ TEST(StaticScenes, MisspelledPetscOptionIsReported) {
     EXPECT_NE(std::string(e.what()).find("-ksp_typo"), std::string::npos) << e.what();
   }
   // The summary of the failed run says why.
-  std::ifstream in(std::string(KERF_BINARY_DIR) + "/test_output/petsc_typo/summary.json");
+  std::ifstream in(testing::output_path("petsc_typo") + "/summary.json");
   json s = json::parse(in);
   EXPECT_EQ(s["status"], "error");
   EXPECT_NE(s["error"].get<std::string>().find("ksp_typo"), std::string::npos);

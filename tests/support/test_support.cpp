@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -29,8 +30,19 @@ void expect_contains(const std::string& text, const std::string& part) {
   EXPECT_NE(text.find(part), std::string::npos) << "'" << part << "' not in: " << text;
 }
 
-std::string output_directory(const std::string& test_name) {
-  std::string dir = std::string(KERF_BINARY_DIR) + "/test_output/" + test_name;
+std::string output_path(const std::string& name) {
+  const ::testing::UnitTest& tests = *::testing::UnitTest::GetInstance();
+  std::string owner = "outside_a_test";
+  if (const ::testing::TestInfo* test = tests.current_test_info())
+    owner = std::string(test->test_suite_name()) + "." + test->name();
+  else if (const ::testing::TestSuite* suite = tests.current_test_suite())
+    owner = suite->name();  // SetUpTestSuite: shared by the suite's tests, run in one process
+  std::replace(owner.begin(), owner.end(), '/', '_');  // parametrized names hold '/'
+  return std::string(KERF_BINARY_DIR) + "/test_output/" + owner + "/" + name;
+}
+
+std::string output_directory(const std::string& name) {
+  const std::string dir = output_path(name);
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

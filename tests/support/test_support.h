@@ -20,8 +20,12 @@ std::string scene_refusal(const std::string& yaml, const std::vector<std::string
 /// EXPECTs that `text` holds `part`, printing both otherwise.
 void expect_contains(const std::string& text, const std::string& part);
 
-/// A fresh output directory under the build tree for one test.
-std::string output_directory(const std::string& test_name);
+/// A fresh output directory `name` under the build tree, inside a folder of
+/// the running test's own (test_output/Suite.Test/name): tests that ctest
+/// runs at once never share one, whatever names they pick.
+std::string output_directory(const std::string& name);
+/// The path output_directory(name) gives, left as it is (to read a run's files).
+std::string output_path(const std::string& name);
 
 /// A mesh of the unit box [0,1]^dim made by gmsh.
 Mesh unit_box_mesh(int dimension, int order, double size);

@@ -83,7 +83,9 @@ TEST_P(FrontRefinementTest, IsConformingKeepsTheVolumeAndMakesTheFrontEdges) {
   for (Index n : r.mesh.cells) used[n] = 1;
   for (Index n = 0; n < r.mesh.node_count(); ++n) {
     EXPECT_TRUE(used[n]) << "node " << n;
-    if (r.input_node[n] >= 0) EXPECT_EQ(r.mesh.nodes[n], mesh.nodes[r.input_node[n]]);
+    if (r.input_node[n] >= 0) {
+      EXPECT_EQ(r.mesh.nodes[n], mesh.nodes[r.input_node[n]]);
+    }
   }
   // Children's nodes sit where their parent's map puts their reference coordinates.
   const int npc = mesh.nodes_per_cell();

@@ -119,7 +119,7 @@ TEST(SceneReader, CutCellsTakeTheirNamesAndAutoResolvesByGrowth) {
   EXPECT_EQ(resolved("1", "split"), CutCells::split);
   EXPECT_EQ(resolved("0", "whole"), CutCells::whole);
   // split is refused where it is not built (EFG, smoothed gradients, VCI), naming the key
-  for (const std::string& other : {"method: efg, meshless: {cut_cells: split}",
+  for (const char* other : {"method: efg, meshless: {cut_cells: split}",
                                    "method: nodal, meshless: {cut_cells: split, gradient: smoothed}",
                                    "method: nodal, meshless: {cut_cells: split, vci: linear}"}) {
     const std::string why = testing::scene_refusal(box + "discretization: {" + other + "}\nsolve: {analysis: static}\n");
