@@ -16,6 +16,12 @@ for _ in $(seq 600); do  # a few steps on disk first (at most a minute)
   sleep 0.1
 done
 [ -f "$out/probes.csv" ] && [ "$(wc -l <"$out/probes.csv")" -ge 6 ] || fail "the run did not get going"
+# The ranks, by pid: mpirun's own children (Open MPI starts local ranks itself).
+ranks=$(cat /proc/"$launcher"/task/*/children 2>/dev/null)
+[ "$(wc -w <<<"$ranks")" -eq 2 ] || fail "mpirun has $(wc -w <<<"$ranks") children, expected the 2 ranks"
+# Alive: the process exists and is not a zombie waiting to be reaped.
+alive() { [ -r "/proc/$1/stat" ] && [ "$(cut -d')' -f2 "/proc/$1/stat" | cut -d' ' -f2)" != Z ]; }
+for rank in $ranks; do alive "$rank" || fail "rank process $rank is not running before the signal"; done
 kill -TERM "$launcher"
 for _ in $(seq 300); do kill -0 "$launcher" 2>/dev/null || break; sleep 0.1; done
 kill -0 "$launcher" 2>/dev/null && { kill -KILL "$launcher"; fail "still running 30 s after SIGTERM"; }
@@ -23,7 +29,7 @@ wait "$launcher"
 code=$?
 cat "$out.log"
 [ "$code" -ne 0 ] || fail "mpirun exited 0"
-pgrep -f "$kerf run $scene" >/dev/null && fail "a rank is still running"
+for rank in $ranks; do alive "$rank" && fail "rank process $rank is still running"; done
 grep -q '"status": "interrupted"' "$out/summary.json" || fail "summary.json does not say interrupted"
 grep -q 'interrupted (SIGTERM)' "$out/summary.json" || fail "summary.json does not name SIGTERM"
 last=$(grep -o 'file="[^"]*"' "$out/block_drop.pvd" | tail -1 | cut -d'"' -f2)
