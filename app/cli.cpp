@@ -13,6 +13,7 @@
 #include "problem/scene_json.h"
 #include "problem/scene_reader.h"
 #include "solvers/petsc_session.h"
+#include "solvers/rank_sum.h"
 #include "studies/study.h"
 
 namespace kerf {
@@ -86,6 +87,16 @@ void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
               " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");
 }
 
+/// The lowest rank for which `refused`, or -1 when none. Under mpirun a
+/// collective: every rank must call it.
+int first_refusing_rank(const RankShare& ranks, bool refused) {
+  if (!ranks.distributed()) return refused ? 0 : -1;
+  const std::vector<std::vector<double>> each = values_of_every_rank({refused ? 1.0 : 0.0}, ranks);
+  for (int r = 0; r < ranks.count; ++r)
+    if (each[r][0] != 0.0) return r;
+  return -1;
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
@@ -100,6 +111,7 @@ int run_command_line(const std::vector<std::string>& args) {
   }
   set_process_ranks(ranks);
   if (ranks.distributed()) set_first_rank_sender(&send_from_first_rank);
+  std::string refusal;  // why the command line or the scene cannot run
   try {
     a = parse(args);
     if (a.command == "--version" || a.command == "version") {
@@ -116,15 +128,20 @@ int run_command_line(const std::vector<std::string>& args) {
     scene = read_scene(a.target, a.overrides);
     refuse_unrunnable(scene);
     refuse_serial_solver_on_ranks(scene, ranks.count);
-    if (a.command == "check") {
-      std::cout << scene_to_json(scene).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-      if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene));
-      return 0;
-    }
   } catch (const std::exception& e) {
-    if (ranks.distributed()) stop_every_rank(ranks, 2, e.what());
-    std::cerr << "kerf: error: " << e.what() << "\n";
+    refusal = e.what();
+  }
+  // Every rank that read the scene (or failed to) gets here: they agree on
+  // who refused it, and the first of them alone says why.
+  if (const int first = first_refusing_rank(ranks, !refusal.empty()); first >= 0) {
+    if (ranks.rank == first)
+      std::cerr << "kerf: error: " << (first != 0 ? "rank " + std::to_string(first) + ": " : "") << refusal << "\n";
     return 2;
+  }
+  if (a.command == "check") {
+    std::cout << scene_to_json(scene).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
+    if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene));
+    return 0;
   }
   try {
     RunOptions options;
@@ -141,7 +158,7 @@ int run_command_line(const std::vector<std::string>& args) {
     return 0;
   } catch (const std::exception& e) {
     // The summary says "error" (run_scene wrote it); the other ranks must not wait for this one.
-    if (ranks.distributed()) stop_every_rank(ranks, 1, e.what());
+    if (ranks.distributed()) stop_every_rank(ranks, 1, e.what(), dynamic_cast<const SharedFailure*>(&e) != nullptr);
     std::cerr << "kerf: error: " << e.what() << "\n";
     return 1;
   }

@@ -199,7 +199,8 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     if (writes) write_file_atomically(summary_path, summary_text(summary));
     // Failing alone, this rank leaves rank 0 waiting in a collective: it must say it itself.
     if (!writes && options.ranks.distributed())
-      stop_every_rank(options.ranks, 1, e.what(), [&] { write_file_atomically(summary_path, summary_text(summary)); });
+      stop_every_rank(options.ranks, 1, e.what(), dynamic_cast<const SharedFailure*>(&e) != nullptr,
+                      [&] { write_file_atomically(summary_path, summary_text(summary)); });
     throw;
   }
   return outcome;

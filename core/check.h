@@ -14,6 +14,14 @@ class Error : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An error every MPI rank meets alike, decided from values each rank holds
+/// the same (a solve's verdict from global norms, the replicated state gone
+/// NaN): under mpirun rank 0 alone reports it, the others say nothing.
+class SharedFailure : public Error {
+ public:
+  using Error::Error;
+};
+
 namespace detail {
 template <class... Parts>
 std::string concat(const Parts&... parts) {
@@ -28,6 +36,12 @@ std::string concat(const Parts&... parts) {
 #define KERF_CHECK(condition, ...)                                  \
   do {                                                              \
     if (!(condition)) throw ::kerf::Error(::kerf::detail::concat(__VA_ARGS__)); \
+  } while (0)
+
+/// KERF_CHECK for a condition every rank evaluates alike (kerf::SharedFailure).
+#define KERF_CHECK_SHARED(condition, ...)                           \
+  do {                                                              \
+    if (!(condition)) throw ::kerf::SharedFailure(::kerf::detail::concat(__VA_ARGS__)); \
   } while (0)
 
 #define KERF_DCHECK(condition) assert(condition)

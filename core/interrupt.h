@@ -21,10 +21,11 @@
 namespace kerf {
 
 /// A run stopped by a signal: summary.json says "interrupted", not "error".
-class Interrupted : public Error {
+/// Under mpirun every rank gets the signal (mpirun forwards it): a shared failure.
+class Interrupted : public SharedFailure {
  public:
   Interrupted(int signal, const std::string& where)
-      : Error(std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") + ") " + where +
+      : SharedFailure(std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") + ") " + where +
               "; the results written so far are complete and readable"),
         signal_(signal) {}
   int signal() const { return signal_; }

@@ -55,7 +55,7 @@ class CentralDifferenceStepper final : public Stepper {
           << critical_step_ << " s (2 / omega_max by Lanczos" << (beta_ > 0 ? ", with stiffness damping" : "")
           << "); expected dt <= " << critical_step_ << " s, or an implicit integrator (or solve.allow_unstable_dt: true to "
           << "run it anyway)";
-      throw Error(why.str());
+      throw SharedFailure(why.str());
     }
     fresh_estimate_ = false;
     const Index n = mechanics_.dof_count();
@@ -72,7 +72,7 @@ class CentralDifferenceStepper final : public Stepper {
     const double t0 = s.t, h = dt / substeps_;
     for (int k = 1; k <= substeps_; ++k) substep(s, h, k == substeps_ ? t0 + dt : t0 + k * h);
     ++s.step;
-    KERF_CHECK(s.u.allFinite(), "central-difference step ", s.step, " (t = ", s.t,
+    KERF_CHECK_SHARED(s.u.allFinite(), "central-difference step ", s.step, " (t = ", s.t,
                " s): the displacement became NaN or infinite: the explicit solution diverged");
   }
 
@@ -90,7 +90,7 @@ class CentralDifferenceStepper final : public Stepper {
     solver.critical_dt_min_s = std::min(solver.critical_dt_min_s.value_or(critical_step_), critical_step_);
     const double needed = options_.dt / critical_step_;
     // Thousands of substeps a step mean a near-singular discretization, not a stiffer body: stopped, naming where.
-    KERF_CHECK(options_.allow_unstable_dt || needed <= max_substeps, "central-difference at t = ", s.t,
+    KERF_CHECK_SHARED(options_.allow_unstable_dt || needed <= max_substeps, "central-difference at t = ", s.t,
                " s: after the cut changed the body its critical time step fell to ", critical_step_, " s; dt = ",
                options_.dt, " s would take ", needed, " substeps a step, more than the ", max_substeps,
                " allowed. The fastest vibration is largest at ", mechanics_.describe_dof(fastest_dof()),

@@ -6,6 +6,9 @@
 #include "core/gmres.h"
 
 namespace kerf {
+
+// A solve's verdict (PETSc's reason, a norm of the replicated solution) is
+// the same on every MPI rank: those checks are KERF_CHECK_SHARED.
 namespace {
 
 /// Translations and infinitesimal rotations on the free dofs, orthonormalised.
@@ -234,7 +237,7 @@ void ImplicitSystem::factorize_now(const std::string& where) {
   ScopedTimer timer(report_.phases, Phase::factorize);
   if (!analyzed_) {
     LinearSolverStatus status = solver_->analyze(free_.restricted());
-    KERF_CHECK(status.ok, where, ": ", status.message);
+    KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
     analyzed_ = true;
   }
   report_.add_stage("factorization");
@@ -261,7 +264,7 @@ void ImplicitSystem::factorize_now(const std::string& where) {
                               ". The body is singular there (too few conditions to hold it still)" +
                               (indefinite.empty() ? "" : ", " + indefinite));
   }
-  KERF_CHECK(status.ok, where, ": ", status.message);  // not the matrix's fault (a backend's set-up)
+  KERF_CHECK_SHARED(status.ok, where, ": ", status.message);  // not the matrix's fault (a backend's set-up)
   factor_stale_ = false;
 }
 
@@ -286,7 +289,7 @@ bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::st
   }
   auto precondition = [&](const Vector& in, Vector& out) {
     LinearSolverStatus status = solver_->solve(in, out);
-    KERF_CHECK(status.ok, where, ": ", status.message);
+    KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
   };
   precondition(r, z);
   p = z;
@@ -327,7 +330,7 @@ Vector ImplicitSystem::solve_unsymmetric(const Vector& b, const std::string& whe
   };
   const LinearOperator precondition = [&](const Vector& r, Vector& z) {
     LinearSolverStatus status = solver_->solve(r, z);
-    KERF_CHECK(status.ok, where, ": ", status.message);
+    KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
   };
   constexpr int restart = 30, max_iterations = 90;
   Vector x = previous_solution_.size() == b.size() ? previous_solution_ : Vector::Zero(b.size());
@@ -343,7 +346,7 @@ Vector ImplicitSystem::solve_unsymmetric(const Vector& b, const std::string& whe
     result = gmres(A, precondition, b, x, linear_tolerance_, restart, max_iterations);
     report_.solver.linear_iterations += result.iterations;
   }
-  KERF_CHECK(result.converged && x.allFinite(), where, ": GMRES on the unsymmetric stiffness (VCI) did not converge in ",
+  KERF_CHECK_SHARED(result.converged && x.allFinite(), where, ": GMRES on the unsymmetric stiffness (VCI) did not converge in ",
              result.iterations, " iterations (relative residual ", result.relative_residual, ", tolerance ",
              linear_tolerance_, "): its Galerkin counterpart, the preconditioner, no longer fits it; expected "
              "discretization.meshless.vci: none or a better-conditioned node set");
@@ -368,9 +371,9 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   }
   ScopedTimer timer(report_.phases, Phase::solve);
   LinearSolverStatus status = solver_->solve(rhs_free, x);
-  KERF_CHECK(status.ok, where, ": ", status.message);
+  KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
   report_.solver.linear_iterations += solver_->last_iterations();
-  KERF_CHECK(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
+  KERF_CHECK_SHARED(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
   previous_solution_ = x;
   return x;
 }

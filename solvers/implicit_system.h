@@ -23,9 +23,10 @@ namespace kerf {
 
 /// A factorization that failed at this state (the matrix singular or
 /// indefinite there): a smaller increment may pass, so a stepper may retry.
-class FactorizationFailed : public Error {
+/// Every rank meets it alike (PETSc's verdict on a shared solve).
+class FactorizationFailed : public SharedFailure {
  public:
-  using Error::Error;
+  using SharedFailure::SharedFailure;
 };
 
 class ImplicitSystem {

@@ -49,10 +49,10 @@ class IncrementControl {
   void rejected(double at, double end, const std::string& failure, const std::string& where) {
     // A failed factorization's message already starts with where it failed.
     const std::string said = failure.rfind(where, 0) == 0 ? failure : where + ": " + failure;
-    KERF_CHECK(adapt_, said, "; try a smaller time step, more load steps, more iterations, or "
+    KERF_CHECK_SHARED(adapt_, said, "; try a smaller time step, more load steps, more iterations, or "
                "solve.adapt: true (halves the increment when a solve fails)");
     const double floor = first_ * std::ldexp(1.0, -max_cutbacks_);
-    KERF_CHECK(0.5 * (end - at) >= floor * (1.0 - 1e-12), said, " from ", at, " to ", end,
+    KERF_CHECK_SHARED(0.5 * (end - at) >= floor * (1.0 - 1e-12), said, " from ", at, " to ", end,
                " after the increment was halved to ", end - at, " (", max_cutbacks_,
                " halvings of the first, solve.max_cutbacks); the problem may have no equilibrium there "
                "(a load past a limit point, a body not held), or needs more halvings");

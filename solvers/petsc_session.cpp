@@ -40,14 +40,18 @@ void ensure_petsc_initialized() {
   std::atexit([] { PetscFinalize(); });
 }
 
-void stop_every_rank(const RankShare& ranks, int code, const std::string& message,
+void stop_every_rank(const RankShare& ranks, int code, const std::string& message, bool shared,
                      const std::function<void()>& if_alone) {
   // mpirun ends the other ranks of an aborted job with SIGTERM: this rank is
   // stopping, so that must end it rather than ask it to stop (InterruptScope).
   std::signal(SIGTERM, SIG_DFL);
   std::signal(SIGINT, SIG_DFL);
   if (ranks.rank != 0) {
-    std::this_thread::sleep_for(std::chrono::seconds(1));
+    // Rank 0 met it too and ends this process with the job; waiting is not
+    // ordering (nothing here is printed first), only a guard against a hang.
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+    while (shared && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
     try {
       if (if_alone) if_alone();
     } catch (const std::exception& e) {

@@ -20,12 +20,14 @@ void check_petsc(int code, const char* call);
 void ensure_petsc_initialized();
 
 /// Ends every rank's process after an error on this one, so that no rank
-/// waits forever for it in a collective call: `message` printed by rank 0 at
-/// once; another rank first gives rank 0 a second to stop the job itself (a
-/// failure every rank meets is then printed once), then, the failure being
-/// its own, calls `if_alone` (its last words: the summary rank 0 will not
-/// write), prints and stops it. The launcher's exit code is `code`.
-[[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message,
+/// waits forever for it in a collective call. Rank 0 prints `message` and
+/// stops the job at once. Another rank, when every rank meets the failure
+/// alike (`shared`: kerf::SharedFailure), says nothing and waits for rank 0
+/// to stop the job (so it is printed once); should rank 0 not do so within
+/// a minute, or when the failure is its own, it calls `if_alone` (its last
+/// words: the summary rank 0 will not write), prints and stops the job. The
+/// launcher's exit code is `code`.
+[[noreturn]] void stop_every_rank(const RankShare& ranks, int code, const std::string& message, bool shared,
                                   const std::function<void()>& if_alone = {});
 
 /// Returns when every rank has called it (files one rank writes that another
