@@ -8,6 +8,7 @@ all: build
 
 deps:
 	@scripts/install_deps.sh
+	@scripts/fetch_paraview_python.sh $(BUILD)/paraview-python
 
 configure: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=Release > /dev/null

@@ -1,18 +1,23 @@
 #!/usr/bin/env bash
 # pvbatch (Debian's paraview) offscreen under xvfb-run, with ParaView's Python
-# modules from python3-paraview unpacked under build/paraview-python: on
-# Debian 12 that package conflicts with python3-vtk9, which libvtk9-dev (kerf's
-# build) needs, so it is extracted beside the build instead of installed.
+# modules that `make deps` unpacked under build/paraview-python
+# (scripts/fetch_paraview_python.sh: nothing is downloaded here). Exits 77
+# (ctest's SKIP_RETURN_CODE) when no X server can start, saying why.
 # Usage: scripts/pvbatch.sh SCRIPT.py ARGS...
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 modules=${KERF_PARAVIEW_PYTHON:-$root/build/paraview-python}
 if [ ! -d "$modules/usr/lib/python3/dist-packages/paraview" ]; then
-  mkdir -p "$modules"
-  (cd "$modules" && apt-get download python3-paraview >/dev/null 2>&1 && dpkg-deb -x python3-paraview_*.deb . &&
-    rm -f python3-paraview_*.deb) || { echo "pvbatch.sh: could not fetch python3-paraview (apt-get download)"; exit 1; }
+  echo "pvbatch.sh: ParaView's Python modules are not in $modules; expected \`make deps\`" \
+    "(or scripts/fetch_paraview_python.sh $modules) first"
+  exit 1
 fi
 export PYTHONPATH="$modules/usr/lib/python3/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+command -v xvfb-run >/dev/null || { echo "pvbatch.sh: skipped: xvfb-run is not installed (package xvfb)"; exit 77; }
+if ! why=$(xvfb-run -a -s "-screen 0 64x64x24" true 2>&1); then
+  echo "pvbatch.sh: skipped: no X server can start here (xvfb-run: ${why:-no message})"
+  exit 77
+fi
 # xvfb-run's server is sometimes not ready for pvbatch's first connection
 # (seen once under ctest -j2: "bad X server connection", SIGABRT): a second
 # server is tried then, once; any other failure is pvbatch's own.
