@@ -52,7 +52,10 @@ const std::vector<double> levels{0.002, 0.0016, 0.00125, 0.001, 0.0008, 0.0006};
 
 // The full study's reference (tet10, tips refined, 0.7 mm) and each method's
 // errors at 2 mm, in percent, as committed in results/crack3d/crack3d.json.
-// The full mode checks that its reference still equals these.
+// The full mode checks that its reference still equals these. Made by
+// `kerf study crack3d` (full) at f95bc61 (2026-11-24), EFG's rows re-made by
+// the same at 7c92754 (2026-11-27); later rows say where they come from.
+// ctest checks the quick mode at 1 and 2 threads.
 struct Openings {
   double centre, front, gap_centre, gap_front;  // m
 };
@@ -66,10 +69,12 @@ constexpr QuickBound measured_at_2mm[] = {
     {"fem_tet4_remove", 9.11, 13.95}, {"efg", 0.01, 10.18},           {"nodal_smoothed", 6.23, 27.51},
     {"nodal_direct_whole", 2.50, 6.51}, {"efg_tips", -1.08, -1.87},       {"nodal_smoothed_tips", 1.80, 5.37},
     // Direct nodal integration with the cells at the crack split (the default
-    // since 2026-11-27), measured by its quick run: the full study predates it.
+    // since 2026-11-27), measured by `kerf study crack3d --quick` at 3db80fe:
+    // the full study predates it.
     {"nodal_direct", -0.66, -1.73},   {"nodal_direct_tips", -0.42, 2.57},
-    // fem: split with the front's cells subdivided (issue 36), measured by hand
-    // on the study's own scenes: the full study predates them.
+    // fem: split with the front's cells subdivided (issue 36), measured at
+    // 5558db5 by `kerf run` on the study's own scenes (its quick mode writes
+    // them under scenes/): the full study predates them.
     {"fem_tet10_split_subdivide", -2.19, -13.74}, {"fem_tet10_split_subdivide_tips", -0.44, -2.40},
 };
 constexpr double quick_margin = 0.3;  // percentage points: the same scene, summed in another order

@@ -55,7 +55,11 @@ const std::vector<double> fem_sizes{0.003, 0.002, 0.0015, 0.0012, 0.001};  // m;
 
 // The full study's reference (tet10 remesh at 1 mm) and each method's error at
 // 3 mm, in percent, as committed in results/cut_convergence/cut_convergence.json.
-// The full mode checks that its reference still equals these.
+// The full mode checks that its reference still equals these. Made by
+// `kerf study cut_convergence` (full) at 15a2c80 (2026-11-24), re-made by the
+// same at 09bcba4 (2026-11-27); nodal_direct by its quick mode at 3db80fe;
+// later rows say where they come from. ctest checks the quick mode at 1 and
+// 2 threads.
 constexpr double reference_sag = 0.0534109, reference_opening = 0.0158691;  // m
 struct QuickBound {
   const char* method;
@@ -65,11 +69,12 @@ constexpr QuickBound measured_at_3mm[] = {
     {"fem_tet10_remesh", -4.40, -6.00}, {"fem_tet4_remesh", -27.62, -34.44}, {"fem_tet4_remove", 2.00, 8.77},
     {"efg", -3.14, -3.89},             {"nodal_smoothed", 41.97, 57.78},   {"nodal_direct", -7.89, -8.91},
     {"nodal_direct_whole", 47.54, 69.25},
-    // Measured by the quick mode itself (the full study has not run them):
+    // Measured by `kerf study cut_convergence --quick` at 85dc6af (the full study has not run them):
     // the front's lag, a 3 mm cell above the blade's edge, leaves the ligament
     // thicker (fem.split_front: over gives tet4 -41.1 / -53.5, tet10 -16.4 / -23.0).
     {"fem_tet4_split", -50.52, -66.10}, {"fem_tet10_split", -35.50, -48.84},
-    // The front's cells subdivided (fem.split_front: subdivide): the jump ends on the front.
+    // The front's cells subdivided (fem.split_front: subdivide): the jump ends on
+    // the front. By `kerf study cut_convergence --quick` at 2f36aa3.
     {"fem_tet4_split_subdivide", -30.14, -38.15}, {"fem_tet10_split_subdivide", -5.90, -8.15},
 };
 constexpr double quick_margin = 0.5;  // percentage points: the same scene, summed in another order
