@@ -22,6 +22,14 @@ class SharedFailure : public Error {
   using Error::Error;
 };
 
+/// A solution that diverged (NaN or infinity in the state): summary.json says
+/// `"diverged": true` beside `"status": "error"`, so a study probing stability
+/// tells it from any other failure.
+class Diverged : public SharedFailure {
+ public:
+  using SharedFailure::SharedFailure;
+};
+
 namespace detail {
 template <class... Parts>
 std::string concat(const Parts&... parts) {

@@ -72,8 +72,9 @@ class CentralDifferenceStepper final : public Stepper {
     const double t0 = s.t, h = dt / substeps_;
     for (int k = 1; k <= substeps_; ++k) substep(s, h, k == substeps_ ? t0 + dt : t0 + k * h);
     ++s.step;
-    KERF_CHECK_SHARED(s.u.allFinite(), "central-difference step ", s.step, " (t = ", s.t,
-               " s): the displacement became NaN or infinite: the explicit solution diverged");
+    if (!s.u.allFinite())
+      throw Diverged(detail::concat("central-difference step ", s.step, " (t = ", s.t,
+                                    " s): the displacement became NaN or infinite: the explicit solution diverged"));
   }
 
   void discretization_changed(SolverState& s) override {

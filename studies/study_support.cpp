@@ -50,7 +50,8 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
   } catch (const Interrupted&) {
     throw;  // a signal stops the study, not only its point
   } catch (const std::exception& e) {
-    summary = {{"status", "error"}, {"error", e.what()}};
+    summary = {{"status", "error"}, {"error", e.what()}};  // as run_scene wrote it in the run's folder
+    if (dynamic_cast<const Diverged*>(&e)) summary["diverged"] = true;
   }
   // The point's memory back to the system: glibc keeps freed heap pages, and
   // the next point's estimate is held to the memory available (crack3d's
