@@ -106,6 +106,7 @@ output: {vtk: false, probes: [{name: energy, field: energy}]}
   std::ifstream in(dir + "/summary.json");
   const json summary = json::parse(in);
   EXPECT_EQ(summary["status"], "error");
+  EXPECT_EQ(summary.value("diverged", false), true) << "a diverged run says so apart from its message";
   EXPECT_GT(summary["solver"]["critical_dt_s"].get<double>(), 0.0);
   EXPECT_LT(summary["solver"]["critical_dt_s"].get<double>(), 0.0012);
   std::ifstream csv(dir + "/probes.csv");
