@@ -7,6 +7,13 @@ import json
 import os
 import sys
 
+
+
+def rounded(value):
+    """Three significant digits for a number; anything else as it is."""
+    return f"{value:.3g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
+
+
 out = sys.argv[1]
 lines = ["# Results of the main job", "",
          "Written by `make run` (scripts/main_job.sh); each study ran in its quick mode",
@@ -17,11 +24,13 @@ for path in sorted(glob.glob(os.path.join(out, "*", "*.json"))):
         continue
     with open(path) as f:
         study = json.load(f)
-    lines += [f"## {name}" + (" (quick)" if study.get("quick") else ""), "", "| figure | value |", "|---|---|"]
-    for h in study.get("headline", []):
-        value = h["value"]
-        text = f"{value:.3g} {h.get('unit', '')}" if isinstance(value, (int, float)) else str(value)
-        lines.append(f"| {h['what']} | {text} |")
+    lines += [f"## {name}" + (" (quick)" if study.get("quick") else ""), ""]
+    rows = [h for h in study.get("headline", []) if h.get("value") is not None]
+    if rows:  # a study whose quick mode has no headline figure gets no empty table
+        lines += ["| figure | value |", "|---|---|"]
+        lines += [f"| {h['what']} | {rounded(h['value'])} {h.get('unit', '')} |" for h in rows]
+    else:
+        lines.append(f"No headline figure in this mode: see `{name}/` (its CSV and JSON).")
     lines.append("")
     for plot in study.get("plots", []):
         lines.append(f"![{name}]({name}/{plot})")

@@ -41,6 +41,7 @@
 // a / 4 is what the full study measured (to 0.05 points), and so is tet4's
 // order between the two.
 #include <cmath>
+#include <cstdio>
 
 #include "core/check.h"
 #include "studies/study_hertz_problem.h"
@@ -223,6 +224,15 @@ void check_quick_claims(const Json& points) {
                   std::to_string(full) + ")");
 }
 
+/// ", observed order 1.52" (two decimals), or "" where no order was fitted
+/// (a single level, or errors within the contact's tolerance).
+std::string order_in_words(const Json& order) {
+  if (!order.is_number()) return "";
+  char text[32];
+  std::snprintf(text, sizeof text, ", observed order %.2f", order.get<double>());
+  return text;
+}
+
 /// hertz.csv, hertz.json (the headline: each method's finest graded level) and the plot.
 void write_results(const StudyRunner& runner, const StudyOptions& options, const Json& points, const Json& rates,
                    double reference) {
@@ -241,7 +251,7 @@ void write_results(const StudyRunner& runner, const StudyOptions& options, const
   Json headline = Json::array();
   for (const auto& [method, p] : finest.items())
     headline.push_back({{"what", method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " +
-                                     p["nodes"].dump() + " nodes (order " + rates[method]["order"].dump() + ")"},
+                                     p["nodes"].dump() + " nodes" + order_in_words(rates[method]["order"])},
                         {"value", p["error_percent"]},
                         {"unit", "%"}});
   Json result = {{"study", "hertz"},
@@ -324,7 +334,7 @@ void hertz_study(const StudyOptions& options) {
   for (const Method& d : methods)
     runner.say(d.label + ": " + std::to_string((*find_point(points, d.label, "graded", graded(d).back()))
                                                    ["error_percent"].get<double>()) +
-               " % off Hertz at a/" + std::to_string(graded(d).back()) + ", order " + rates[d.label]["order"].dump() +
+               " % off Hertz at a/" + std::to_string(graded(d).back()) + order_in_words(rates[d.label]["order"]) +
                (d.claimed ? "" : ", reported only"));
   if (options.quick)
     check_quick_claims(points);
