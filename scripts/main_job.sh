@@ -29,4 +29,4 @@ echo
 echo "Headline figures and plots: $readme"
 echo "ParaView: $out/scenes/<scene>/<scene>.pvd, the cut study's $out/cut/runs/<way>/cut.pvd; every run's"
 echo "summary.json beside it."
-echo "Full study results (committed): results/README.md"
+echo "Full study results (committed), per question: results/README.md"

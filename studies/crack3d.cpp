@@ -252,7 +252,7 @@ bool falls_at_every_level(const std::vector<Json>& levels, std::size_t skip) {
   return true;
 }
 
-/// What each method does under refinement (full mode), as results/README.md says it.
+/// What each method does under refinement (full mode), as results/cracks.md says it.
 void check_method_claims(const Json& points) {
   for (const Json& p : points_of(points, "efg")) {
     const double h = p["spacing_m"], centre = p["centre_error_percent"], front = p["front_error_percent"];
@@ -308,7 +308,7 @@ void check_method_claims(const Json& points) {
   }
 }
 
-/// The claims, as results/README.md says them in words.
+/// The claims, as results/cracks.md says them in words.
 void check_crack3d_claims(const Json& result, bool quick) {
   const Json& points = result["points"];
   for (const Json& p : points)

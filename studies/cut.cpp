@@ -25,7 +25,7 @@
 // opening: the x-displacement of a point 4 mm behind the blade's plane minus
 // that of a point 4 mm before it, on the top face at mid-width (4 mm: the
 // gap `remove` leaves is a cell wide).
-// Claims, as results/README.md says them: every run finishes and each cut
+// Claims, as results/cuts.md says them: every run finishes and each cut
 // follows every blade move; in each the cut opens (past twice the same
 // method's uncut block's opening) and the end sags more than uncut; uncut,
 // nodal and FEM sag alike (within 5%; 12% at the quick mode's 5 mm); cut,
@@ -150,7 +150,7 @@ void cut_study(const StudyOptions& options) {
   write_json(runner.out_dir() + "/cut.json", result);
   plot("cut", runner.out_dir());
 
-  // The claims: what results/README.md says of the runs in words.
+  // The claims: what results/cuts.md says of the runs in words.
   for (const Way& w : ways)
     check_claim(runs[w.label]["status"] == "ok", w.label + " ran (" + runs[w.label]["status"].get<std::string>() + ")");
   for (const Way& w : ways) {

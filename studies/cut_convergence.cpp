@@ -34,7 +34,7 @@
 // on the nodes and 0.1 mm off them; it holds each method's error to at most
 // what the full study measured at 3 mm (the constants below, from
 // results/cut_convergence/cut_convergence.json): one-sided, an improvement passes.
-// Claims: see the end; results/README.md says them in words.
+// Claims: see the end; results/cuts.md says them in words.
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -196,7 +196,7 @@ Json headline_of(const Json& points, const Json& orders) {
   return headline;
 }
 
-/// The claims, as results/README.md says them in words.
+/// The claims, as results/cuts.md says them in words.
 void check_cut_convergence_claims(const Json& result, bool quick) {
   const Json& points = result["points"];
   for (const Json& p : points)

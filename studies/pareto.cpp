@@ -17,7 +17,7 @@
 // Claims: every point ran; every method at its finest level is within 6% of
 // Hertz and 5% of the crack reference, and its Hertz error falls from its
 // coarsest to its finest level (direct nodal on Hertz: reported only); in full
-// mode, as results/README.md says, smoothed nodal integration beats tet4's
+// mode, as results/cost.md says, smoothed nodal integration beats tet4's
 // finest on Hertz and EFG's finest beats every FEM point on the crack.
 #include <algorithm>
 #include <array>
@@ -198,7 +198,7 @@ void pareto_study(const StudyOptions& options) {
     const double bound = problem == "hertz" ? 6.0 : 5.0;
     for (const auto& [method, levels] : methods) {
       // The paper's direct nodal gradients break down on the graded lattice at
-      // a/4 (results/README.md, Hertz): reported, not claimed.
+      // a/4 (results/contact.md): reported, not claimed.
       if (problem == "hertz" && method == "nodal") continue;
       const double finest = levels.back()->error_percent;
       check_claim(finest < bound, problem + ": " + method + " at its finest level is within " +
@@ -209,7 +209,7 @@ void pareto_study(const StudyOptions& options) {
     }
   }
   if (quick) return;
-  // What results/README.md says of the fronts in words.
+  // What results/cost.md says of the fronts in words.
   const double smoothed = series["hertz"]["nodal_smoothed"].back()->error_percent;
   const double tet4 = series["hertz"]["fem_tet4"].back()->error_percent;
   check_claim(smoothed < tet4, "hertz: smoothed nodal integration at a/4 is more accurate than tet4 at its finest (" +

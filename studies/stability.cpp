@@ -28,7 +28,7 @@
 //    against the work of the load.
 // 5. Locking. The cantilever under an end load, nu = 0.3 and 0.49, static:
 //    tip deflection against fem tet10 at half the size.
-// Claims (each what results/README.md says in words; every planned run must
+// Claims (each what results/stability.md says in words; every planned run must
 // finish, but a bisection's probe may diverge, which is what "unstable" means
 // here: the state NaN or the energy past twice the load's work): the estimate is safe (stable at f = 1)
 // and tight (unstable within the bisection's resolution) for every method, and
@@ -266,7 +266,7 @@ Json critical_step(Experiments& x) {
     x.number("critical_step", m.label, "first_unstable_over_estimate", hi, "1");
     x.runner.say(m.label + ": estimate " + std::to_string(estimate) + " s, stable up to " + std::to_string(lo) +
                  " x, unstable at " + std::to_string(hi) + " x");
-    // Safe, and as tight as the bisection can tell (results/README.md: within 0.8%).
+    // Safe, and as tight as the bisection can tell (results/stability.md: within 0.8%).
     const double resolution = std::ldexp(1.0, -bisections(x.quick));
     x.claim(at_estimate, m.label + " runs stably at its own critical-step estimate");
     x.claim(hi <= 1.0 + resolution * (1.0 + 1e-12),
@@ -297,7 +297,7 @@ Json energy_drift(Experiments& x) {
     x.number("energy_drift", m.label, "max_energy_error_over_max_strain", relative, "1");
     x.runner.say(m.label + ": undamped energy error " + std::to_string(100 * relative) + " % of the strain energy over " +
                  std::to_string(steps) + " steps");
-    // results/README.md: no drift (2e-6 to 6e-6 measured over 20 000 steps).
+    // results/stability.md: no drift (2e-6 to 6e-6 measured over 20 000 steps).
     x.claim(relative < 1e-4, m.label + " keeps the undamped energy within 1e-4 of the strain energy (it is " +
                                  std::to_string(relative) + ")");
   }
@@ -397,7 +397,7 @@ Json locking(Experiments& x) {
       x.number("locking", m.label, "deflection_over_reference_nu" + std::string(nu), ratio, "1");
     }
   }
-  // results/README.md: tet4 loses 38% of its deflection; tet10 and the meshless methods 1-3%.
+  // results/stability.md: tet4 loses 38% of its deflection; tet10 and the meshless methods 1-3%.
   for (const Variant& m : all_methods()) {
     const Json &stiff = out[m.label]["deflection_over_reference_nu0.49"], &soft = out[m.label]["deflection_over_reference_nu0.3"];
     const double kept = stiff.is_number() && soft.is_number() ? stiff.get<double>() / soft.get<double>() : NAN;

@@ -165,7 +165,7 @@ TEST(CrackScenes, FemSplitWithTheFrontSubdividedMatchesTheRemesh) {
                      {"discretization.method=fem", "cuts.0.fem=split", "discretization.fem.split_front=subdivide"},
                      "crack_slab_fem_split_subdivide");
   EXPECT_EQ(slab["solver"]["cut_front_unresolved"].get<int>(), 0);
-  const double slab_reference = 4.2329e-5;  // m: tet10 remesh at 0.7 mm (results/README.md)
+  const double slab_reference = 4.2329e-5;  // m: tet10 remesh at 0.7 mm (results/cracks.md)
   EXPECT_LT(relative_error("slab 3D fem split tet10 2 mm (subdivide)", opening(slab), {0.0, slab_reference}), 0.02);
 }
 
