@@ -26,7 +26,7 @@ class Interrupted : public SharedFailure {
  public:
   Interrupted(int signal, const std::string& where)
       : SharedFailure(std::string("interrupted (") + (signal == SIGTERM ? "SIGTERM" : "SIGINT, Ctrl-C") + ") " + where +
-              "; the results written so far are complete and readable"),
+                      "; the results written so far are complete and readable"),
         signal_(signal) {}
   int signal() const { return signal_; }
 

@@ -92,10 +92,10 @@ class CentralDifferenceStepper final : public Stepper {
     const double needed = options_.dt / critical_step_;
     // Thousands of substeps a step mean a near-singular discretization, not a stiffer body: stopped, naming where.
     KERF_CHECK_SHARED(options_.allow_unstable_dt || needed <= max_substeps, "central-difference at t = ", s.t,
-               " s: after the cut changed the body its critical time step fell to ", critical_step_, " s; dt = ",
-               options_.dt, " s would take ", needed, " substeps a step, more than the ", max_substeps,
-               " allowed. The fastest vibration is largest at ", mechanics_.describe_dof(fastest_dof()),
-               ": a near-singular shape function within a support of there (a cut through or next to a node?)");
+                      " s: after the cut changed the body its critical time step fell to ", critical_step_, " s; dt = ",
+                      options_.dt, " s would take ", needed, " substeps a step, more than the ", max_substeps,
+                      " allowed. The fastest vibration is largest at ", mechanics_.describe_dof(fastest_dof()),
+                      ": a near-singular shape function within a support of there (a cut through or next to a node?)");
     substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(needed)));
     solver.substeps_max = std::max(solver.substeps_max, substeps_);
     // A remeshed body comes with a new stepper, which has read no load yet.

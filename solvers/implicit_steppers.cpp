@@ -60,7 +60,8 @@ class StaticStepper final : public Stepper {
       }
       // The tangent at the last equilibrium does not depend on the load: a
       // smaller increment cannot make it factorizable.
-      if (result.status == NewtonStatus::factorization_failed && result.iterations == 0) throw SharedFailure(result.failure);
+      if (result.status == NewtonStatus::factorization_failed && result.iterations == 0)
+        throw SharedFailure(result.failure);
       s.u = start;
       if (contact_start) mechanics_.contact()->restore(*contact_start);
       control_.rejected(s.t, load, describe(result, options_.newton), where.str());
@@ -117,7 +118,8 @@ class StaticStepper final : public Stepper {
     for (ContactTerm* contact = mechanics_.contact(); result.converged() && contact && contact->augment(u, load);
          ++round) {
       KERF_CHECK_SHARED(round < max_augmentations, where, ": contact did not settle in ", max_augmentations,
-                 " augmented Lagrangian rounds (penetration or the sphere's force still off); try more load steps");
+                        " augmented Lagrangian rounds (penetration or the sphere's force still off); "
+                        "try more load steps");
       read_prescribed();
       const int before = result.iterations;
       result = solve();

@@ -347,9 +347,9 @@ Vector ImplicitSystem::solve_unsymmetric(const Vector& b, const std::string& whe
     report_.solver.linear_iterations += result.iterations;
   }
   KERF_CHECK_SHARED(result.converged && x.allFinite(), where, ": GMRES on the unsymmetric stiffness (VCI) did not converge in ",
-             result.iterations, " iterations (relative residual ", result.relative_residual, ", tolerance ",
-             linear_tolerance_, "): its Galerkin counterpart, the preconditioner, no longer fits it; expected "
-             "discretization.meshless.vci: none or a better-conditioned node set");
+                    result.iterations, " iterations (relative residual ", result.relative_residual, ", tolerance ",
+                    linear_tolerance_, "): its Galerkin counterpart, the preconditioner, no longer fits it; expected "
+                    "discretization.meshless.vci: none or a better-conditioned node set");
   previous_solution_ = x;
   return x;
 }
