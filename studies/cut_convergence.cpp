@@ -84,7 +84,7 @@ struct Method {
   std::string cut_cells;                               // nodal: whole (the paper's) | split (empty: the default)
   std::vector<double> spacings;                        // m, coarse to fine (full mode)
   int quadrature_order = 0;                            // efg: Gauss points a direction (0: the default)
-  std::string split_front;                             // fem: split's front (empty: the default, lag)
+  std::string split_front = "";                        // fem: split's front (empty: the default, lag)
 };
 
 /// How far the blade is moved off its place (m): its plane along x, its front up.
