@@ -193,9 +193,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     if (writes) write_file_atomically(summary_path, summary_text(summary));
   } catch (const std::exception& e) {
     write_report(report, summary);
-    summary["status"] = dynamic_cast<const Interrupted*>(&e) ? "interrupted" : "error";
-    summary["error"] = e.what();
-    if (dynamic_cast<const Diverged*>(&e)) summary["diverged"] = true;
+    write_failure(e, summary);
     if (options.ranks.distributed()) summary["error_rank"] = options.ranks.rank;
     if (writes) write_file_atomically(summary_path, summary_text(summary));
     // Failing alone, this rank leaves rank 0 waiting in a collective: it must say it itself.

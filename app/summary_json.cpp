@@ -4,6 +4,8 @@
 
 #include <omp.h>
 
+#include "core/check.h"
+#include "core/interrupt.h"
 #include "core/peak_memory.h"
 #include "core/thread_policy.h"
 
@@ -100,6 +102,12 @@ void write_report(const RunReport& report, json& summary) {
   summary["stages"] = report.stages;
   summary["notes"] = report.notes;
   summary["solver"] = solver_counters(report);
+}
+
+void write_failure(const std::exception& failure, json& summary) {
+  summary["status"] = dynamic_cast<const Interrupted*>(&failure) ? "interrupted" : "error";
+  summary["error"] = failure.what();
+  if (dynamic_cast<const Diverged*>(&failure)) summary["diverged"] = true;
 }
 
 }  // namespace kerf

@@ -11,4 +11,9 @@ namespace kerf {
 /// Writes (or overwrites) those keys of `summary` from `report`.
 void write_report(const RunReport& report, nlohmann::ordered_json& summary);
 
+/// What a run that threw `failure` says in summary.json: "status"
+/// (`interrupted` or `error`), "error" (the message) and, for a solution
+/// that diverged, "diverged": true. The one place those keys are decided.
+void write_failure(const std::exception& failure, nlohmann::ordered_json& summary);
+
 }  // namespace kerf

@@ -41,15 +41,14 @@ std::string concat(const Parts&... parts) {
 
 }  // namespace kerf
 
-#define KERF_CHECK(condition, ...)                                  \
+#define KERF_CHECK_THROWING(error_type, condition, ...)             \
   do {                                                              \
-    if (!(condition)) throw ::kerf::Error(::kerf::detail::concat(__VA_ARGS__)); \
+    if (!(condition)) throw error_type(::kerf::detail::concat(__VA_ARGS__)); \
   } while (0)
 
+#define KERF_CHECK(condition, ...) KERF_CHECK_THROWING(::kerf::Error, condition, __VA_ARGS__)
+
 /// KERF_CHECK for a condition every rank evaluates alike (kerf::SharedFailure).
-#define KERF_CHECK_SHARED(condition, ...)                           \
-  do {                                                              \
-    if (!(condition)) throw ::kerf::SharedFailure(::kerf::detail::concat(__VA_ARGS__)); \
-  } while (0)
+#define KERF_CHECK_SHARED(condition, ...) KERF_CHECK_THROWING(::kerf::SharedFailure, condition, __VA_ARGS__)
 
 #define KERF_DCHECK(condition) assert(condition)

@@ -8,7 +8,6 @@ import os
 import sys
 
 
-
 def rounded(value):
     """Three significant digits for a number; anything else as it is."""
     return f"{value:.3g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)

@@ -13,6 +13,7 @@
 #include <thread>
 
 #include "app/run_scene.h"
+#include "app/summary_json.h"
 #include "core/check.h"
 #include "core/interrupt.h"
 #include "core/timer.h"
@@ -50,8 +51,8 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
   } catch (const Interrupted&) {
     throw;  // a signal stops the study, not only its point
   } catch (const std::exception& e) {
-    summary = {{"status", "error"}, {"error", e.what()}};  // as run_scene wrote it in the run's folder
-    if (dynamic_cast<const Diverged*>(&e)) summary["diverged"] = true;
+    summary = Json::object();
+    write_failure(e, summary);  // the keys run_scene wrote in the run's folder
   }
   // The point's memory back to the system: glibc keeps freed heap pages, and
   // the next point's estimate is held to the memory available (crack3d's
