@@ -36,6 +36,7 @@
 
 #include "core/check.h"
 #include "problem/scene_reader.h"
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -81,8 +82,8 @@ constexpr double quick_margin = 0.3;  // percentage points: the same scene, summ
 
 struct SlabMethod {
   std::string label;
-  std::vector<std::string> overrides;  // on scenes/crack_slab_3d.yaml, beside the spacing
-  std::vector<double> spacings;        // m, coarse to fine (full mode)
+  std::function<void(Scene&)> configure;  // on scenes/crack_slab_3d.yaml, beside the spacing
+  std::vector<double> spacings;           // m, coarse to fine (full mode)
   bool meshless = false, removes_cells = false;
   double tip_refinement = 0;  // > 0: boxes around the tips at spacing / tip_refinement
 };
@@ -90,78 +91,88 @@ struct SlabMethod {
 std::vector<SlabMethod> study_methods() {
   const std::vector<double> tet10_levels(levels.begin(), levels.end() - 1);
   const std::vector<double> tips_levels{0.002, 0.00125, 0.001};
-  const std::string efg = "discretization.method=efg", support = "discretization.meshless.support=2.2";
-  const std::string nodal = "discretization.method=nodal", gradient = "discretization.meshless.gradient=";
-  const std::string split = "cuts.0.fem=split", subdivide = "discretization.fem.split_front=subdivide";
+  auto fem = [](ElementType element, FemCut cut, SplitFront front) {
+    return [=](Scene& s) {
+      s.discretization.method = Method::fem;
+      s.discretization.fem.element = element;
+      s.discretization.fem.split_front = front;
+      s.cuts[0].fem = cut;
+    };
+  };
+  auto tet10 = fem(ElementType::tet10, FemCut::remesh, SplitFront::lag);
+  auto split = fem(ElementType::tet10, FemCut::split, SplitFront::subdivide);
+  auto efg = [](Scene& s) {
+    s.discretization.method = Method::efg;
+    s.discretization.meshless.support = 2.2;
+  };
+  auto nodal = [](NodalGradient gradient, CutCells cells) {
+    return [=](Scene& s) {
+      s.discretization.method = Method::nodal;
+      s.discretization.meshless.gradient = gradient;
+      s.discretization.meshless.cut_cells = cells;
+    };
+  };
+  auto smoothed = nodal(NodalGradient::smoothed, CutCells::automatic);
+  auto direct = nodal(NodalGradient::direct, CutCells::automatic);
   return {
-      {"fem_tet10_tips", {"discretization.method=fem", "discretization.fem.element=tet10"}, reference_sizes,
-       false, false, 4},
-      {"fem_tet10_remesh", {"discretization.method=fem", "discretization.fem.element=tet10"}, tet10_levels},
-      {"fem_tet4_remesh", {"discretization.method=fem", "discretization.fem.element=tet4"}, levels},
+      {"fem_tet10_tips", tet10, reference_sizes, false, false, 4},
+      {"fem_tet10_remesh", tet10, tet10_levels},
+      {"fem_tet4_remesh", fem(ElementType::tet4, FemCut::remesh, SplitFront::lag), levels},
       // Split cells (fem: split), the front's cells subdivided so that the jump ends on the tips.
-      {"fem_tet10_split_subdivide", {"discretization.method=fem", "discretization.fem.element=tet10", split, subdivide},
-       tet10_levels},
-      {"fem_tet10_split_subdivide_tips",
-       {"discretization.method=fem", "discretization.fem.element=tet10", split, subdivide}, tips_levels, false, false, 4},
-      {"fem_tet4_remove", {"discretization.method=fem", "discretization.fem.element=tet4", "cuts.0.fem=remove"},
-       levels, false, true},
-      {"efg", {efg, support}, levels, true},
-      {"nodal_smoothed", {nodal, gradient + "smoothed"}, levels, true},
-      {"nodal_direct", {nodal, gradient + "direct"}, levels, true},
+      {"fem_tet10_split_subdivide", split, tet10_levels},
+      {"fem_tet10_split_subdivide_tips", split, tips_levels, false, false, 4},
+      {"fem_tet4_remove", fem(ElementType::tet4, FemCut::remove, SplitFront::lag), levels, false, true},
+      {"efg", efg, levels, true},
+      {"nodal_smoothed", smoothed, levels, true},
+      {"nodal_direct", direct, levels, true},
       // The paper's: every node's whole cell at its node, across the crack too.
-      {"nodal_direct_whole", {nodal, gradient + "direct", "discretization.meshless.cut_cells=whole"}, levels, true},
+      {"nodal_direct_whole", nodal(NodalGradient::direct, CutCells::whole), levels, true},
       // The meshless lattices with the tips refined too (their own lattice at
       // half the spacing: a quarter, as the reference has, makes EFG's
       // stiffness singular at 1 mm).
-      {"efg_tips", {efg, support}, tips_levels, true, false, 2},
-      {"nodal_smoothed_tips", {nodal, gradient + "smoothed"}, tips_levels, true, false, 2},
-      {"nodal_direct_tips", {nodal, gradient + "direct"}, tips_levels, true, false, 2},
+      {"efg_tips", efg, tips_levels, true, false, 2},
+      {"nodal_smoothed_tips", smoothed, tips_levels, true, false, 2},
+      {"nodal_direct_tips", direct, tips_levels, true, false, 2},
   };
 }
 
-std::string number_text(double x) {
-  std::ostringstream s;
-  s.precision(10);
-  s << x;
-  return s.str();
-}
-
 /// Pairs of probes either side of the crack at (x, +-y, z), named NAME_up and NAME_down.
-std::string probe_pair(const std::string& name, double x, double y, double z) {
-  std::string pair;
-  for (const char* side : {"up", "down"})
-    pair += "{name: " + name + "_" + side + ", point: [" + number_text(x) + ", " +
-            number_text(side[0] == 'u' ? y : -y) + ", " + number_text(z) + "], field: displacement}, ";
-  return pair;
+void add_probe_pair(Scene& scene, const std::string& name, double x, double y, double z) {
+  scene.output.probes.push_back(study_scene::displacement_probe(name + "_up", Vec3(x, y, z)));
+  scene.output.probes.push_back(study_scene::displacement_probe(name + "_down", Vec3(x, -y, z)));
 }
 
-/// The probes (on the faces unless the method removes cells) and the level's size.
-std::vector<std::string> overrides_of(const SlabMethod& m, double h) {
-  std::vector<std::string> o = m.overrides;
-  o.push_back((m.meshless ? "discretization.meshless.spacing=" : "discretization.fem.size=") + number_text(h));
-  for (const auto& [item, x] : {std::pair{4, -0.0205}, std::pair{5, 0.0205}})
-    o.push_back("boundary." + std::to_string(item) + ".select={box: {min: [" + number_text(x) + ", -" +
-                number_text(support_half_height) + ", -0.001], max: [" + number_text(x) + ", " +
-                number_text(support_half_height) + ", 0.001]}}");
-  if (m.tip_refinement > 0) {
-    std::string boxes;
-    for (double tip : {-0.01, 0.01})
-      boxes += std::string(boxes.empty() ? "" : ", ") + "{box: {min: [" + number_text(tip - 0.0015) +
-               ", -0.0015, -0.001], max: [" + number_text(tip + 0.0015) + ", 0.0015, 0.001]}, size: " +
-               number_text(h / m.tip_refinement) + "}";
-    o.push_back("discretization.refine=[" + boxes + "]");
+/// The slab by `m` at level `h`: its supports' patches, the tips' boxes, the
+/// probes (on the faces unless the method removes cells).
+Scene slab_scene(const SlabMethod& m, double h) {
+  Scene scene = read_scene(study_data_path("scenes/crack_slab_3d.yaml"));
+  m.configure(scene);
+  (m.meshless ? scene.discretization.meshless.spacing : scene.discretization.fem.size) = h;
+  for (const auto& [item, x] : {std::pair{4, -0.0205}, std::pair{5, 0.0205}}) {
+    Selection& patch = scene.boundary[item].select;
+    patch.kind = Selection::Kind::box;
+    patch.box = Box{Vec3(x, -support_half_height, -0.001), Vec3(x, support_half_height, 0.001)};
   }
-  std::string probes = probe_pair("gap_centre", 0, gap_y, 0) + probe_pair("gap_front", front_x, gap_y, 0);
-  if (!m.removes_cells)
-    probes += probe_pair("centre", 0, 1e-9, 0) + probe_pair("front_mid", front_x, 1e-9, 0) +
-              probe_pair("front_face", front_x, 1e-9, face_z);
-  o.push_back("output.probes=[" + probes.substr(0, probes.size() - 2) + "]");
-  o.push_back("output.vtk=false");
-  return o;
+  if (m.tip_refinement > 0)
+    for (double tip : {-0.01, 0.01})
+      scene.discretization.refine.push_back(
+          {Box{Vec3(study_scene::as_written(tip - 0.0015), -0.0015, -0.001),
+               Vec3(study_scene::as_written(tip + 0.0015), 0.0015, 0.001)},
+           h / m.tip_refinement});
+  scene.output.probes.clear();
+  add_probe_pair(scene, "gap_centre", 0, gap_y, 0);
+  add_probe_pair(scene, "gap_front", front_x, gap_y, 0);
+  if (!m.removes_cells) {
+    add_probe_pair(scene, "centre", 0, 1e-9, 0);
+    add_probe_pair(scene, "front_mid", front_x, 1e-9, 0);
+    add_probe_pair(scene, "front_face", front_x, 1e-9, face_z);
+  }
+  scene.output.vtk_every = 0;
+  return scene;
 }
 
-double opening_of(const Json& probes, const std::string& name) {
-  return probes[name + "_up"]["displacement"][1].get<double>() - probes[name + "_down"]["displacement"][1].get<double>();
+double opening_of(const RunRecord& run, const std::string& name) {
+  return run.probe(name + "_up", 1) - run.probe(name + "_down", 1);
 }
 
 /// How far the uniform lattice's nearest column of nodes lies from the crack's
@@ -175,22 +186,19 @@ double tip_offset(double h) {
 }
 
 /// One run's figures (errors filled in once the reference is known).
-Json point_of(const SlabMethod& m, double h, const Json& summary) {
-  const bool ok = summary.value("status", "") == "ok";
-  Json p = {{"method", m.label}, {"spacing_m", h},
-            {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}};
-  if (!ok) return p;
-  const Json& probes = summary["probes"];
-  p["nodes"] = summary["counts"]["nodes"];
-  p["dofs"] = summary["counts"]["dofs"];
-  p["gap_centre_m"] = opening_of(probes, "gap_centre");
-  p["gap_front_m"] = opening_of(probes, "gap_front");
+Json point_of(const SlabMethod& m, double h, const RunRecord& run) {
+  Json p = {{"method", m.label}, {"spacing_m", h}, {"status", run.ok() ? std::string("ok") : run.error}};
+  if (!run.ok()) return p;
+  p["nodes"] = run.report.counts.nodes;
+  p["dofs"] = run.report.counts.dofs;
+  p["gap_centre_m"] = opening_of(run, "gap_centre");
+  p["gap_front_m"] = opening_of(run, "gap_front");
   if (!m.removes_cells) {
-    p["centre_m"] = opening_of(probes, "centre");
-    p["front_mid_m"] = opening_of(probes, "front_mid");
-    p["front_face_m"] = opening_of(probes, "front_face");
+    p["centre_m"] = opening_of(run, "centre");
+    p["front_mid_m"] = opening_of(run, "front_mid");
+    p["front_face_m"] = opening_of(run, "front_face");
   }
-  p["run_s"] = whole_run_seconds(summary);
+  p["run_s"] = whole_run_seconds(run);
   if (m.meshless && m.tip_refinement == 0) p["tip_offset"] = tip_offset(h);
   return p;
 }
@@ -352,18 +360,17 @@ void crack3d_study(const StudyOptions& options) {
   StudyRunner runner("crack3d", options, planned);
 
   // The independent check: the 2D plane-strain plate, a quarter by symmetry (its centre moves half the opening).
-  const std::string source = study_data_path("scenes") + "/";
-  const Json plate = runner.run("plane_strain_2d_quarter", read_scene_text(source + "crack_plate_2d_quarter_fem.yaml"));
-  KERF_CHECK(plate.value("status", "") == "ok", "crack3d: the 2D quarter model failed: ", plate.value("error", ""));
-  const double plate_opening = 2.0 * plate["probes"]["centre"]["displacement"][1].get<double>();
+  const RunRecord plate =
+      runner.run("plane_strain_2d_quarter", read_scene(study_data_path("scenes/crack_plate_2d_quarter_fem.yaml")));
+  KERF_CHECK(plate.ok(), "crack3d: the 2D quarter model failed: ", plate.error);
+  const double plate_opening = 2.0 * plate.probe("centre", 1);
 
-  const std::string slab = read_scene_text(source + "crack_slab_3d.yaml");
   Json points = Json::array();
   for (const SlabMethod& m : methods)
     for (double h : spacings_of(m, quick)) {
       std::ostringstream label;
       label << m.label << "_h" << 1e3 * h << "mm";
-      points.push_back(point_of(m, h, runner.run(label.str(), slab, overrides_of(m, h))));
+      points.push_back(point_of(m, h, runner.run(label.str(), slab_scene(m, h))));
     }
 
   Json reference_point = {{"centre_m", reference_openings.centre}, {"front_mid_m", reference_openings.front},

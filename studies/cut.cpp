@@ -33,8 +33,9 @@
 // cells, whose jump ends about a cell short of the blade's lower edge, leave
 // a thicker ligament: measured at 3 mm they sag less than remesh.)
 #include <cmath>
-#include <sstream>
+#include <optional>
 
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -45,53 +46,54 @@ constexpr double blade_x = 0.02, blade_bottom = 0.008;        // m
 constexpr double probe_offset = 0.004;                        // m, either side of the blade
 
 struct Way {
-  std::string label, method, fem;  // fem: remesh | remove | split | "" (meshless)
+  std::string label;
+  Method method;
+  std::optional<FemCut> fem;  // none: meshless
   bool cut = true;
 };
 
 constexpr double blade_step = 0.002;                             // m, each move across the width
 const int moves = static_cast<int>(std::lround(width / blade_step)) + 1;  // from y = -1 mm to 1 mm beyond
 
-std::string scene_text(const Way& w, double spacing, double duration, int vtk_every) {
-  std::ostringstream s, strip, times;
-  s.precision(10);
-  strip.precision(10);
-  times.precision(10);
+/// The blade's strip: a vertical edge at x = blade_x crossing the width in
+/// `moves` moves from t = 0.1 s to 60% of the way to the end.
+Cut blade(const Way& w, double duration) {
+  Cut cut;
+  cut.is_strip = true;
   for (int k = 0; k <= moves; ++k) {
-    const double y = -0.5 * blade_step + blade_step * k, t = 0.1 + 0.6 * (duration - 0.1) * k / moves;
-    strip << (k ? ", " : "") << "[" << blade_x << ", " << y << ", " << height + 0.001 << "], [" << blade_x << ", "
-          << y << ", " << blade_bottom << "]";
-    times << (k ? ", " : "") << (k == 0 ? 0.0 : t) << ", " << (k == 0 ? 0.0 : t);
+    // As written: at 3 mm the blade's edge passes node rows (y = 9, 15, 21 mm),
+    // and moves fall on steps' times (t = 0.22 s).
+    const double y = study_scene::as_written(-0.5 * blade_step + blade_step * k);
+    const double t = study_scene::as_written(0.1 + 0.6 * (duration - 0.1) * k / moves);
+    cut.vertices.push_back(Vec3(blade_x, y, height + 0.001));
+    cut.vertices.push_back(Vec3(blade_x, y, blade_bottom));
+    cut.times.insert(cut.times.end(), 2, k == 0 ? 0.0 : t);
   }
-  s << "name: cut\n"
-    << "domain: {box: {min: [0, 0, 0], max: [" << length << ", " << width << ", " << height << "]}}\n"
-    << "material: {model: corotational, young: 3.0e4, poisson: 0.35, density: 1000.0, damping: {mass: 10.0}}\n"
-    << "discretization:\n"
-    << "  method: " << w.method << "\n"
-    << "  fem: {element: tet4, size: " << spacing << "}\n"
-    << "  meshless: {spacing: " << spacing << "}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n";
-  if (w.cut)
-    s << "cuts:\n"
-      << "  - strip: [" << strip.str() << "]\n"
-      << "    times: [" << times.str() << "]\n"
-      << "    enrichment: grid\n"
-      << "    fem: " << (w.fem.empty() ? "remesh" : w.fem) << "\n";
-  s << "solve: {analysis: dynamic, integrator: " << (w.method == "fem" ? "implicit-euler" : "central-difference")
-    << ", dt: 0.00025, duration: " << duration << ", newton: {max_iterations: 1}, tangent: definite}\n"
-    << "output:\n"
-    << "  vtk: " << (vtk_every > 0 ? "{every: " + std::to_string(vtk_every) + "}" : std::string("false")) << "\n"
-    << "  probes:\n"
-    << "    - {name: end, point: [" << length << ", " << width / 2 << ", " << height / 2
-    << "], field: displacement}\n"
-    << "    - {name: behind, point: [" << blade_x + probe_offset << ", " << width / 2 << ", " << height
-    << "], field: displacement}\n"
-    << "    - {name: before, point: [" << blade_x - probe_offset << ", " << width / 2 << ", " << height
-    << "], field: displacement}\n"
-    << "    - {name: energy, field: energy}\n";
-  return s.str();
+  cut.enrichment = Enrichment::grid;
+  cut.fem = w.fem.value_or(FemCut::remesh);
+  return cut;
+}
+
+Scene scene_of(const Way& w, double spacing, double duration, int vtk_every) {
+  using namespace study_scene;
+  Scene scene = box_body("cut", Vec3(0, 0, 0), Vec3(length, width, height));
+  scene.material = material(MaterialModel::corotational, 3.0e4, 0.35, 1000.0, 10.0);
+  scene.discretization.method = w.method;
+  scene.discretization.fem.size = spacing;
+  scene.discretization.meshless.spacing = spacing;
+  scene.boundary = {held(0, 0.0)};
+  scene.gravity = Vec3(0, 0, -9.81);
+  if (w.cut) scene.cuts = {blade(w, duration)};
+  scene.solve = implicit_steps(0.00025, 1);
+  scene.solve.duration = duration;
+  if (w.method != Method::fem) scene.solve.integrator = Integrator::central_difference;
+  scene.solve.tangent = TangentKind::definite;
+  scene.output.vtk_every = vtk_every;
+  scene.output.probes = {displacement_probe("end", Vec3(length, width / 2, height / 2)),
+                         displacement_probe("behind", Vec3(blade_x + probe_offset, width / 2, height)),
+                         displacement_probe("before", Vec3(blade_x - probe_offset, width / 2, height)),
+                         energy_probe("energy")};
+  return scene;
 }
 
 }  // namespace
@@ -102,12 +104,12 @@ void cut_study(const StudyOptions& options) {
   const double duration = quick ? 0.3 : 1.5;    // s
   const int vtk_every = quick ? 400 : 80;
   const std::vector<Way> ways{
-      {"nodal_grid", "nodal", ""},
-      {"fem_remesh", "fem", "remesh"},
-      {"fem_remove", "fem", "remove"},
-      {"fem_split", "fem", "split"},
-      {"nodal_uncut", "nodal", "", false},
-      {"fem_uncut", "fem", "", false},
+      {"nodal_grid", Method::nodal, std::nullopt},
+      {"fem_remesh", Method::fem, FemCut::remesh},
+      {"fem_remove", Method::fem, FemCut::remove},
+      {"fem_split", Method::fem, FemCut::split},
+      {"nodal_uncut", Method::nodal, std::nullopt, false},
+      {"fem_uncut", Method::fem, std::nullopt, false},
   };
   StudyRunner runner("cut", options, static_cast<int>(ways.size()));
   CsvTable table(runner.out_dir() + "/cut.csv",
@@ -115,19 +117,18 @@ void cut_study(const StudyOptions& options) {
                   "opening_m", "status"});
   Json runs = Json::object();
   for (const Way& w : ways) {
-    const Json s = runner.run(w.label, scene_text(w, spacing, duration, vtk_every));
-    const bool ok = s.value("status", "") == "ok";
-    Json r = {{"status", ok ? std::string("ok") : s.value("error", std::string("failed"))}};
+    const RunRecord run = runner.run(w.label, scene_of(w, spacing, duration, vtk_every));
+    const bool ok = run.ok();
+    Json r = {{"status", ok ? std::string("ok") : run.error}};
     if (ok) {
-      const Json& p = s["probes"];
-      r["nodes"] = s["counts"]["nodes"];
-      r["updates"] = s["timing"]["cut_update_ms"]["count"];
-      r["update_ms_median"] = s["timing"]["cut_update_ms"]["median"];
-      r["update_ms_max"] = s["timing"]["cut_update_ms"]["max"];
-      r["refresh_ms_median"] = s["timing"]["cut_refresh_ms"]["median"];
-      r["step_ms_median"] = s["timing"]["step_ms"]["median"];
-      r["end_sag_m"] = -p["end"]["displacement"][2].get<double>();
-      r["opening_m"] = p["behind"]["displacement"][0].get<double>() - p["before"]["displacement"][0].get<double>();
+      r["nodes"] = run.report.counts.nodes;
+      r["updates"] = run.cut_update_ms.count;
+      r["update_ms_median"] = run.cut_update_ms.median_ms;
+      r["update_ms_max"] = run.cut_update_ms.max_ms;
+      r["refresh_ms_median"] = run.cut_refresh_ms.median_ms;
+      r["step_ms_median"] = run.step_ms.median_ms;
+      r["end_sag_m"] = -run.probe("end", 2);
+      r["opening_m"] = run.probe("behind", 0) - run.probe("before", 0);
       r["paraview"] = "runs/" + w.label + "/cut.pvd";
     }
     table.row({w.label, r.value("nodes", Json()), r.value("updates", Json()), r.value("update_ms_median", Json()),
@@ -156,7 +157,7 @@ void cut_study(const StudyOptions& options) {
   for (const Way& w : ways) {
     const Json& r = runs[w.label];
     if (!w.cut) continue;
-    const Json& uncut = runs[w.method + "_uncut"];
+    const Json& uncut = runs[std::string(to_string(w.method)) + "_uncut"];
     check_claim(r["updates"].get<int>() == moves, w.label + " followed each of the blade's " + std::to_string(moves) +
                                                       " moves (it updated " + r["updates"].dump() + " times)");
     check_claim(r["opening_m"].get<double>() > 2.0 * std::abs(uncut["opening_m"].get<double>()),

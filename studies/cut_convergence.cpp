@@ -40,6 +40,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -79,12 +80,17 @@ constexpr QuickBound measured_at_3mm[] = {
 };
 constexpr double quick_margin = 0.5;  // percentage points: the same scene, summed in another order
 
-struct Method {
-  std::string label, method, element, fem, gradient;  // fem: remesh | remove | split (FEM only)
-  std::string cut_cells;                               // nodal: whole (the paper's) | split (empty: the default)
-  std::vector<double> spacings;                        // m, coarse to fine (full mode)
-  int quadrature_order = 0;                            // efg: Gauss points a direction (0: the default)
-  std::string split_front = "";                        // fem: split's front (empty: the default, lag)
+/// One way of cutting: a method and what it is run with.
+struct Way {
+  std::string label;
+  Method method;
+  ElementType element = ElementType::tet4;
+  FemCut fem = FemCut::remesh;
+  NodalGradient gradient = NodalGradient::direct;
+  CutCells cut_cells = CutCells::automatic;  // nodal: whole (the paper's) or split
+  std::vector<double> spacings;              // m, coarse to fine (full mode)
+  int quadrature_order = 2;                  // efg: Gauss points a direction
+  SplitFront split_front = SplitFront::lag;  // fem: split's front
 };
 
 /// How far the blade is moved off its place (m): its plane along x, its front up.
@@ -93,56 +99,49 @@ struct Shift {
   bool none() const { return plane == 0.0 && front == 0.0; }
 };
 
-std::string scene_text(const Method& m, double h, Shift shift) {
+Scene scene_of(const Way& m, double h, Shift shift) {
+  using namespace study_scene;
   const double x = blade_x + shift.plane, front = blade_front + shift.front;
-  std::ostringstream s;
-  s.precision(10);
-  s << "name: cut_block\n"
-    << "domain: {box: {min: [0, 0, 0], max: [" << length << ", " << width << ", " << height << "]}}\n"
-    << "material: {model: linear, young: 3.0e4, poisson: 0.35, density: " << density << "}\n"
-    << "discretization:\n"
-    << "  method: " << m.method << "\n"
-    << "  fem: {element: " << (m.element.empty() ? "tet4" : m.element) << ", size: " << h
-    << (m.split_front.empty() ? "" : ", split_front: " + m.split_front) << "}\n"
-    << "  meshless: {spacing: " << h << (m.gradient.empty() ? "" : ", gradient: " + m.gradient)
-    << (m.cut_cells.empty() ? "" : ", cut_cells: " + m.cut_cells)
-    << (m.quadrature_order ? ", quadrature: {order: " + std::to_string(m.quadrature_order) + "}" : "") << "}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, " << -gravity << "]}\n"
-    << "cuts:\n"
-    << "  - strip: [[" << x << ", -0.001, " << height + 0.001 << "], [" << x << ", -0.001, " << front << "], [" << x
-    << ", " << width + 0.001 << ", " << height + 0.001 << "], [" << x << ", " << width + 0.001 << ", " << front << "]]\n"
-    << "    enrichment: grid\n"
-    << "    fem: " << (m.fem.empty() ? "remesh" : m.fem) << "\n"
-    << "solve: {analysis: static}\n"
-    << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: end, point: [" << length << ", " << width / 2 << ", " << height / 2 << "], field: displacement}\n"
-    << "    - {name: behind, point: [" << blade_x + probe_offset << ", " << width / 2 << ", " << height
-    << "], field: displacement}\n"
-    << "    - {name: before, point: [" << blade_x - probe_offset << ", " << width / 2 << ", " << height
-    << "], field: displacement}\n"
-    << "    - {name: support, select: {plane: {axis: x, at: 0}}, field: reaction}\n";
-  return s.str();
+  Scene scene = box_body("cut_block", Vec3(0, 0, 0), Vec3(length, width, height));
+  scene.material = material(MaterialModel::linear, 3.0e4, 0.35, density);
+  DiscretizationOptions& d = scene.discretization;
+  d.method = m.method;
+  d.fem.element = m.element;
+  d.fem.size = h;
+  d.fem.split_front = m.split_front;
+  d.meshless.spacing = h;
+  d.meshless.gradient = m.gradient;
+  d.meshless.cut_cells = m.cut_cells;
+  d.meshless.quadrature_order = m.quadrature_order;
+  scene.boundary = {held(0, 0.0)};
+  scene.gravity = Vec3(0, 0, -gravity);
+  Cut blade;
+  blade.is_strip = true;
+  blade.vertices = {Vec3(x, -0.001, height + 0.001), Vec3(x, -0.001, front), Vec3(x, width + 0.001, height + 0.001),
+                    Vec3(x, width + 0.001, front)};
+  blade.times.assign(4, 0.0);
+  blade.fem = m.fem;
+  scene.cuts = {blade};
+  scene.output.probes = {displacement_probe("end", Vec3(length, width / 2, height / 2)),
+                         displacement_probe("behind", Vec3(blade_x + probe_offset, width / 2, height)),
+                         displacement_probe("before", Vec3(blade_x - probe_offset, width / 2, height)),
+                         reaction_probe("support", plane(0, 0.0))};
+  return scene;
 }
 
 /// One run's figures (errors filled in once the reference is known).
-Json point_of(const Method& m, double h, Shift shift, const Json& summary) {
-  const bool ok = summary.value("status", "") == "ok";
+Json point_of(const Way& m, double h, Shift shift, const RunRecord& run) {
   Json p = {{"method", m.label}, {"spacing_m", h}, {"shift_plane_m", shift.plane}, {"shift_front_m", shift.front},
-            {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}};
-  if (!ok) return p;
-  const Json& probes = summary["probes"];
-  p["nodes"] = summary["counts"]["nodes"];
-  p["dofs"] = summary["counts"]["dofs"];
-  p["sag_m"] = -probes["end"]["displacement"][2].get<double>();
-  p["opening_m"] = probes["behind"]["displacement"][0].get<double>() - probes["before"]["displacement"][0].get<double>();
-  p["reaction_z_N"] = probes["support"]["reaction"][2];
-  p["setup_s"] = summary["timing"]["setup_s"];
-  p["solve_s"] = summary["timing"]["solve_s"];
-  p["run_s"] = whole_run_seconds(summary);
+            {"status", run.ok() ? std::string("ok") : run.error}};
+  if (!run.ok()) return p;
+  p["nodes"] = run.report.counts.nodes;
+  p["dofs"] = run.report.counts.dofs;
+  p["sag_m"] = -run.probe("end", 2);
+  p["opening_m"] = run.probe("behind", 0) - run.probe("before", 0);
+  p["reaction_z_N"] = run.probe("support", 2);
+  p["setup_s"] = run.report.setup_seconds;
+  p["solve_s"] = run.report.solve_seconds;
+  p["run_s"] = whole_run_seconds(run);
   return p;
 }
 
@@ -281,37 +280,46 @@ void check_cut_convergence_claims(const Json& result, bool quick) {
 
 /// Every method, the reference first. Meshless lattices: at 2.5 mm nodes lie on
 /// the cut's plane, at 2 mm on its plane and its front; 3, 1.5 and 1.2 mm miss both.
-std::vector<Method> study_methods() {
+std::vector<Way> study_methods() {
   const std::vector<double> meshless{0.003, 0.0025, 0.002, 0.0015, 0.0012};
+  const Way fem{.label = "fem_tet4_remesh", .method = Method::fem, .spacings = fem_sizes};
+  auto variant = [](Way way, const char* label, auto&& change) {
+    way.label = label;
+    change(way);
+    return way;
+  };
+  const Way efg{.label = "efg", .method = Method::efg, .spacings = meshless};
+  const Way nodal{.label = "nodal_direct", .method = Method::nodal, .spacings = meshless};
   return {
-      {"fem_tet10_remesh", "fem", "tet10", "remesh", "", "", fem_sizes},  // the reference
-      {"fem_tet4_remesh", "fem", "tet4", "remesh", "", "", fem_sizes},
-      {"fem_tet4_remove", "fem", "tet4", "remove", "", "", fem_sizes},
+      variant(fem, "fem_tet10_remesh", [](Way& w) { w.element = ElementType::tet10; }),  // the reference
+      fem,
+      variant(fem, "fem_tet4_remove", [](Way& w) { w.fem = FemCut::remove; }),
       // Cells split by the cut, one copy per side; its front lags a cell (fem.split_front: lag).
-      {"fem_tet4_split", "fem", "tet4", "split", "", "", fem_sizes},
-      {"fem_tet10_split", "fem", "tet10", "split", "", "", fem_sizes},
+      variant(fem, "fem_tet4_split", [](Way& w) { w.fem = FemCut::split; }),
+      variant(fem, "fem_tet10_split", [](Way& w) { w.fem = FemCut::split, w.element = ElementType::tet10; }),
       // The same with the front's cells subdivided so that it runs along edges.
-      {"fem_tet4_split_subdivide", "fem", "tet4", "split", "", "", fem_sizes, 0, "subdivide"},
-      {"fem_tet10_split_subdivide", "fem", "tet10", "split", "", "", fem_sizes, 0, "subdivide"},
-      {"efg", "efg", "", "", "", "", meshless},
+      variant(fem, "fem_tet4_split_subdivide", [](Way& w) { w.fem = FemCut::split, w.split_front = SplitFront::subdivide; }),
+      variant(fem, "fem_tet10_split_subdivide",
+              [](Way& w) { w.fem = FemCut::split, w.split_front = SplitFront::subdivide, w.element = ElementType::tet10; }),
+      efg,
       // EFG with its quadrature converged (4 points a direction: 8 times the
       // points): what its shape functions give without the 2-point rule's error.
-      {"efg_order4", "efg", "", "", "", "", {0.003, 0.0025, 0.002, 0.0015}, 4},
-      {"nodal_smoothed", "nodal", "", "", "smoothed", "", meshless},
-      {"nodal_direct", "nodal", "", "", "direct", "", meshless},
+      variant(efg, "efg_order4", [](Way& w) { w.quadrature_order = 4, w.spacings = {0.003, 0.0025, 0.002, 0.0015}; }),
+      variant(nodal, "nodal_smoothed", [](Way& w) { w.gradient = NodalGradient::smoothed; }),
+      nodal,
       // The paper's nodal integration: every node's whole dual cell at its node, across the cut too.
-      {"nodal_direct_whole", "nodal", "", "", "direct", "whole", meshless},
+      variant(nodal, "nodal_direct_whole", [](Way& w) { w.cut_cells = CutCells::whole; }),
   };
 }
 
 /// A method's refinement levels: quick mode runs 3 mm only, and not the 4-point EFG (8 s a run there).
-std::vector<double> spacings_of(const Method& m, bool quick) {
+std::vector<double> spacings_of(const Way& m, bool quick) {
   if (!quick) return m.spacings;
-  return m.quadrature_order ? std::vector<double>{} : std::vector<double>{0.003};
+  return m.quadrature_order != 2 ? std::vector<double>{} : std::vector<double>{0.003};
 }
 
 struct PlannedRun {
-  const Method* method;
+  const Way* method;
   double h;
   Shift shift;
   std::string label() const {
@@ -326,7 +334,7 @@ struct PlannedRun {
 /// lattice's nodes (both alike, then the plane alone and the front alone),
 /// for tet10 (each moved cut's reference) and the meshless methods (quick:
 /// direct nodal only, on the nodes and 0.1 mm off).
-std::vector<PlannedRun> plan_of(const std::vector<Method>& methods, bool quick) {
+std::vector<PlannedRun> plan_of(const std::vector<Way>& methods, bool quick) {
   const std::vector<Shift> shifts =
       quick ? std::vector<Shift>{{}, {1e-4, 1e-4}}
             : std::vector<Shift>{{}, {1e-5, 1e-5}, {1e-4, 1e-4}, {3e-4, 3e-4}, {5e-4, 5e-4}, {1e-3, 1e-3},
@@ -336,11 +344,11 @@ std::vector<PlannedRun> plan_of(const std::vector<Method>& methods, bool quick) 
             : std::vector<std::string>{"fem_tet10_remesh", "nodal_direct", "nodal_direct_whole", "nodal_smoothed",
                                        "efg"};
   std::vector<PlannedRun> plan;
-  for (const Method& m : methods)
+  for (const Way& m : methods)
     for (double h : spacings_of(m, quick)) plan.push_back({&m, h, Shift{}});
   for (const Shift& shift : shifts)
     for (const std::string& label : swept) {
-      const Method& m = *std::find_if(methods.begin(), methods.end(), [&](const Method& x) { return x.label == label; });
+      const Way& m = *std::find_if(methods.begin(), methods.end(), [&](const Way& x) { return x.label == label; });
       if (!shift.none() || quick) plan.push_back({&m, sweep_h, shift});  // unmoved: a refinement run (full)
     }
   return plan;
@@ -351,14 +359,14 @@ std::vector<PlannedRun> plan_of(const std::vector<Method>& methods, bool quick) 
 void cut_convergence_study(const StudyOptions& options) {
   const bool quick = options.quick;
   // 1. What runs.
-  const std::vector<Method> methods = study_methods();
+  const std::vector<Way> methods = study_methods();
   const std::vector<PlannedRun> plan = plan_of(methods, quick);
 
   // 2. Run every point; a failed run is recorded, then fails a claim.
   StudyRunner runner("cut_convergence", options, static_cast<int>(plan.size()));
   Json points = Json::array();
   for (const PlannedRun& r : plan)
-    points.push_back(point_of(*r.method, r.h, r.shift, runner.run(r.label(), scene_text(*r.method, r.h, r.shift))));
+    points.push_back(point_of(*r.method, r.h, r.shift, runner.run(r.label(), scene_of(*r.method, r.h, r.shift))));
   for (const Json& p : points)
     check_claim(p["status"] == "ok", p["method"].get<std::string>() + " at h = " + p["spacing_m"].dump() +
                                          ", shifts " + p["shift_plane_m"].dump() + " " + p["shift_front_m"].dump() +
@@ -369,7 +377,7 @@ void cut_convergence_study(const StudyOptions& options) {
                                : find_point(points, methods[0].label, fem_sizes.back(), {});
   add_errors(points, reference);
   Json orders = Json::object();
-  for (const Method& m : methods) {
+  for (const Way& m : methods) {
     std::vector<double> h = spacings_of(m, quick);
     if (m.label == methods[0].label && !quick) h.pop_back();  // the reference itself
     std::vector<Json> levels;

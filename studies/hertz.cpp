@@ -53,7 +53,7 @@ namespace {
 using namespace hertz;
 
 /// One method of the study and the finest spacings (a / n, n even) it runs at.
-struct Method {
+struct Way {
   std::string label;
   MethodChoice discretization;
   bool claimed;  // held to the bounds (the paper's direct nodal gradients are reported only)
@@ -62,16 +62,17 @@ struct Method {
   double quick_hertz_bound;  // %: off Hertz at its finest quick level, at most (claimed methods)
 };
 
-const std::vector<Method>& study_methods() {
+const std::vector<Way>& study_methods() {
   // tet4 converges as h and needs a/12 for 2%; the others reach it at a/4.
-  static const std::vector<Method> methods{
+  static const std::vector<Way> methods{
       // The quick bounds sit above the full study's errors at those levels
       // (tet4 4.47% at a/4, tet10 1.62% at a/2, efg 1.23% and smoothed 0.52% at a/4).
-      {"fem_tet4", {"fem", "tet4"}, true, true, {2, 4, 6, 8, 12}, {2, 4}, {2, 3, 4}, 5.0},
-      {"fem_tet10", {"fem", "tet10"}, true, true, {2, 4, 6}, {2}, {2}, 2.0},
-      {"efg", {"efg"}, true, true, {2, 4, 6, 8}, {2, 4}, {2}, 2.0},
-      {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, true, false, {2, 4, 6, 8}, {2, 4}, {2}, 2.0},
-      {"nodal", {"nodal", "tet4", "direct"}, false, false, {2, 4, 6, 8}, {2}, {2}, 0.0},
+      {"fem_tet4", {Method::fem}, true, true, {2, 4, 6, 8, 12}, {2, 4}, {2, 3, 4}, 5.0},
+      {"fem_tet10", {Method::fem, ElementType::tet10}, true, true, {2, 4, 6}, {2}, {2}, 2.0},
+      {"efg", {Method::efg}, true, true, {2, 4, 6, 8}, {2, 4}, {2}, 2.0},
+      {"nodal_smoothed", {Method::nodal, ElementType::tet4, NodalGradient::smoothed}, true, false, {2, 4, 6, 8},
+       {2, 4}, {2}, 2.0},
+      {"nodal", {Method::nodal}, false, false, {2, 4, 6, 8}, {2}, {2}, 0.0},
   };
   return methods;
 }
@@ -97,8 +98,8 @@ constexpr double reference_bound = 1.0;    // %: the same against the reference
 constexpr double contact_tolerance = 0.1;  // % of the travel a point may penetrate (contact_term.cpp)
 constexpr double fit_floor = 2.0 * contact_tolerance;
 
-const Method& reference_of_study() {
-  for (const Method& m : study_methods())
+const Way& reference_of_study() {
+  for (const Way& m : study_methods())
     if (m.label == reference_method) return m;
   throw Error("internal: the Hertz study has no method " + std::string(reference_method));
 }
@@ -113,7 +114,7 @@ const Json* find_point(const Json& points, const std::string& method, const std:
 /// whose error is above the contact's tolerance (null below two such levels).
 Json observed_rates(const Json& points) {
   Json rates = Json::object();
-  for (const Method& m : study_methods()) {
+  for (const Way& m : study_methods()) {
     std::vector<double> h, error;
     Json levels = Json::array();
     for (const Json& p : points)
@@ -141,7 +142,7 @@ void check_full_claims(const Json& points, const Json& rates, double reference) 
   check_claim(std::abs(percent_off(reference, reference_indentation)) < 1e-6,
               "the reference equals the one quick mode uses (" + std::to_string(reference) +
                   " m; update reference_indentation)");
-  for (const Method& d : study_methods()) {
+  for (const Way& d : study_methods()) {
     if (!d.claimed) continue;
     const Json& finest = *find_point(points, d.label, "graded", d.graded_full.back());
     const Json& coarsest = *find_point(points, d.label, "graded", d.graded_full.front());
@@ -180,7 +181,7 @@ void check_full_claims(const Json& points, const Json& rates, double reference) 
 /// Quick mode, against Hertz's formula: each claimed method at its finest
 /// quick level within its bound, and closer than at its coarsest where monotone.
 void check_quick_hertz_claims(const Json& points) {
-  for (const Method& m : study_methods()) {
+  for (const Way& m : study_methods()) {
     if (!m.claimed) continue;
     const Json* finest = find_point(points, m.label, "graded", m.graded_quick.back());
     const Json* coarsest = find_point(points, m.label, "graded", m.graded_quick.front());
@@ -277,32 +278,32 @@ void write_results(const StudyRunner& runner, const StudyOptions& options, const
 
 void hertz_study(const StudyOptions& options) {
   // 1. What runs.
-  const std::vector<Method>& methods = study_methods();
-  auto graded = [&](const Method& m) { return options.quick ? m.graded_quick : m.graded_full; };
-  auto uniform = [&](const Method& m) { return options.quick ? std::vector<int>{} : m.uniform; };
+  const std::vector<Way>& methods = study_methods();
+  auto graded = [&](const Way& m) { return options.quick ? m.graded_quick : m.graded_full; };
+  auto uniform = [&](const Way& m) { return options.quick ? std::vector<int>{} : m.uniform; };
   int planned = 0;
-  for (const Method& m : methods) planned += static_cast<int>(graded(m).size() + uniform(m).size());
+  for (const Way& m : methods) planned += static_cast<int>(graded(m).size() + uniform(m).size());
   StudyRunner runner("hertz", options, planned);
   runner.say("Hertz indentation " + std::to_string(indentation()) + " m under " + std::to_string(force()) +
              " N (a quarter of it on the quarter model)");
 
   // 2. Run every point; a failed run is recorded, not fatal.
   Json points = Json::array();
-  auto record = [&](const Method& d, const std::string& family, int n, double h, const Json& summary) {
-    const bool ok = summary.value("status", "") == "ok";
-    const double depth = ok ? summary["probes"]["indent"]["indentation"].get<double>() : NAN;
+  auto record = [&](const Way& d, const std::string& family, int n, double h, const RunRecord& run) {
+    const bool ok = run.ok();
+    const double depth = ok ? run.probe("indent") : NAN;
     points.push_back({{"method", d.label}, {"family", family}, {"spacing_m", h}, {"a_over_h", n},
-                      {"nodes", ok ? summary["counts"]["nodes"] : Json()},
-                      {"dofs", ok ? summary["counts"]["dofs"] : Json()},
+                      {"nodes", ok ? Json(run.report.counts.nodes) : Json()},
+                      {"dofs", ok ? Json(run.report.counts.dofs) : Json()},
                       {"indentation_m", ok ? Json(depth) : Json()},
                       {"error_percent", ok ? Json(percent_off(depth, indentation())) : Json()},
                       {"error_vs_reference_percent", Json()},
-                      {"setup_s", ok ? summary["timing"]["setup_s"] : Json()},
-                      {"solve_s", ok ? summary["timing"]["solve_s"] : Json()},
-                      {"run_s", ok ? Json(whole_run_seconds(summary)) : Json()},
-                      {"status", ok ? std::string("ok") : summary.value("error", std::string("failed"))}});
+                      {"setup_s", ok ? Json(run.report.setup_seconds) : Json()},
+                      {"solve_s", ok ? Json(run.report.solve_seconds) : Json()},
+                      {"run_s", ok ? Json(whole_run_seconds(run)) : Json()},
+                      {"status", ok ? std::string("ok") : run.error}});
   };
-  for (const Method& d : methods) {
+  for (const Way& d : methods) {
     for (int n : graded(d)) {
       const std::string label = "graded_" + d.label + "_a" + std::to_string(n);
       record(d, "graded", n, contact_radius / n, runner.run(label, graded_scene(d.discretization, n)));
@@ -310,7 +311,7 @@ void hertz_study(const StudyOptions& options) {
     for (int n : uniform(d)) {
       const double h = contact_radius / n;
       const std::string label = "uniform_" + d.label + "_a" + std::to_string(n);
-      record(d, "uniform", n, h, runner.run(label, scene(d.discretization, uniform_block, h, "")));
+      record(d, "uniform", n, h, runner.run(label, scene(d.discretization, uniform_block, h)));
     }
   }
 
@@ -331,7 +332,7 @@ void hertz_study(const StudyOptions& options) {
   for (const Json& p : points)
     check_claim(p["status"] == "ok", p["method"].get<std::string>() + " " + p["family"].get<std::string>() +
                                          " at a/h = " + p["a_over_h"].dump() + " ran (" + p["status"].dump() + ")");
-  for (const Method& d : methods)
+  for (const Way& d : methods)
     runner.say(d.label + ": " + std::to_string((*find_point(points, d.label, "graded", graded(d).back()))
                                                    ["error_percent"].get<double>()) +
                " % off Hertz at a/" + std::to_string(graded(d).back()) + order_in_words(rates[d.label]["order"]) +

@@ -32,12 +32,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "core/check.h"
 #include "core/thread_scope.h"
 #include "geometry/gmsh_session.h"
+#include "problem/scene_reader.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -45,15 +45,16 @@ namespace {
 
 struct Way {
   std::string label;
-  std::vector<std::string> overrides;
+  Method method;
+  NodalStabilization stabilization = NodalStabilization::hourglass;
+  VciOrder vci = VciOrder::none;
 };
 
 const std::vector<Way> ways{
-    {"nodal", {"discretization.method=nodal"}},
-    {"nodal_nsni", {"discretization.method=nodal", "discretization.meshless.stabilization=nsni"}},
-    {"nodal_nsni_vci",
-     {"discretization.method=nodal", "discretization.meshless.stabilization=nsni", "discretization.meshless.vci=linear"}},
-    {"efg", {"discretization.method=efg"}},
+    {"nodal", Method::nodal},
+    {"nodal_nsni", Method::nodal, NodalStabilization::nsni},
+    {"nodal_nsni_vci", Method::nodal, NodalStabilization::nsni, VciOrder::linear},
+    {"efg", Method::efg},
 };
 
 /// organ.geo meshed by gmsh at `size` (m) and `order`, written to `path`.
@@ -72,25 +73,26 @@ void mesh_organ(const std::string& path, double size, int order) {
   gmsh::clear();
 }
 
-/// scenes/organ_sag.yaml on `mesh` (its path made absolute).
-std::string organ_scene(const std::string& mesh) {
-  std::ifstream in(study_data_path("scenes/organ_sag.yaml"));
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string s = text.str();
-  const std::string key = "mesh: meshes/organ_4mm.msh";
-  const std::size_t at = s.find(key);
-  KERF_CHECK(at != std::string::npos, "scenes/organ_sag.yaml: expected '", key, "'");
-  return s.replace(at, key.size(), "mesh: " + mesh);
+/// scenes/organ_sag.yaml on `mesh` (an absolute path).
+Scene organ_scene(const std::string& mesh) {
+  Scene scene = read_scene(study_data_path("scenes/organ_sag.yaml"));
+  scene.mesh_file = mesh;
+  return scene;
+}
+
+Scene organ_scene(const std::string& mesh, const Way& w) {
+  Scene scene = organ_scene(mesh);
+  scene.discretization.method = w.method;
+  scene.discretization.meshless.stabilization = w.stabilization;
+  scene.discretization.meshless.vci = w.vci;
+  return scene;
 }
 
 struct Figures {
   double top = 0, end = 0, energy = 0;
 };
-Figures figures(const Json& s) {
-  const Json& p = s["probes"];
-  return {p["top"]["displacement"][2].get<double>(), p["end"]["displacement"][2].get<double>(),
-          p["energy"]["strain"].get<double>()};
+Figures figures(const RunRecord& run) {
+  return {run.probe("top", 2), run.probe("end", 2), run.probe("energy", 1)};
 }
 
 }  // namespace
@@ -110,9 +112,11 @@ void organ_study(const StudyOptions& options) {
   };
 
   // 1. The reference.
-  const Json ref_run = runner.run("tet10_reference", organ_scene(mesh_file(reference_size, 2)),
-                                  {"discretization.method=fem", "discretization.fem.element=tet10"});
-  check_claim(ref_run.value("status", "") == "ok", "the tet10 reference runs (" + ref_run.value("error", "") + ")");
+  Scene reference_scene = organ_scene(mesh_file(reference_size, 2));
+  reference_scene.discretization.method = Method::fem;
+  reference_scene.discretization.fem.element = ElementType::tet10;
+  const RunRecord ref_run = runner.run("tet10_reference", reference_scene);
+  check_claim(ref_run.ok(), "the tet10 reference runs (" + ref_run.error + ")");
   const Figures ref = figures(ref_run);
 
   // 2. Each way at each size.
@@ -124,18 +128,18 @@ void organ_study(const StudyOptions& options) {
     for (double size : sizes) {
       std::ostringstream label;
       label << w.label << "_" << size * 1000 << "mm";
-      const Json s = runner.run(label.str(), organ_scene(mesh_file(size, 1)), w.overrides);
-      const bool ok = s.value("status", "") == "ok";
-      Json p = {{"way", w.label}, {"spacing_m", size}, {"status", ok ? "ok" : s.value("error", "failed")}};
+      const RunRecord run = runner.run(label.str(), organ_scene(mesh_file(size, 1), w));
+      const bool ok = run.ok();
+      Json p = {{"way", w.label}, {"spacing_m", size}, {"status", ok ? "ok" : run.error}};
       if (ok) {
-        const Figures f = figures(s);
-        p["nodes"] = s["counts"]["nodes"];
+        const Figures f = figures(run);
+        p["nodes"] = run.report.counts.nodes;
         p["top_error_percent"] = percent_off(f.top, ref.top);
         p["end_error_percent"] = percent_off(f.end, ref.end);
         p["energy_error_percent"] = percent_off(f.energy, ref.energy);
-        p["ic_residual_max"] = s["solver"]["ic_residual_max"];
-        p["setup_s"] = s["timing"]["setup_s"];
-        p["solve_s"] = s["timing"]["solve_s"];
+        p["ic_residual_max"] = run.extra("ic_residual_max");
+        p["setup_s"] = run.report.setup_seconds;
+        p["solve_s"] = run.report.solve_seconds;
       }
       table.row({p["way"], size, p.value("nodes", Json()), p.value("top_error_percent", Json()),
                  p.value("end_error_percent", Json()), p.value("energy_error_percent", Json()),

@@ -35,23 +35,32 @@ namespace kerf {
 namespace {
 
 struct Point {
+  Point(std::string problem, std::string method, double resolution)
+      : problem(std::move(problem)), method(std::move(method)), resolution(resolution) {}
   std::string problem, method;
   double resolution;  // a / h (Hertz) or h in m (crack)
-  Json summary;
+  RunRecord run;
   double error_percent = NAN;  // |error|
   double wall_s = NAN;
   bool ok() const { return std::isfinite(error_percent); }
 };
 
-double wall_time(const Json& summary) {
-  return summary["timing"]["setup_s"].get<double>() + summary["timing"]["solve_s"].get<double>();
-}
+double wall_time(const RunRecord& run) { return run.report.setup_seconds + run.report.solve_seconds; }
 
 /// The opening u(upper face) - u(lower face) at the crack's centre (m).
-std::array<double, 2> opening(const Json& summary) {
-  const Json& p = summary["probes"];
-  return {p["upper_face"]["displacement"][0].get<double>() - p["lower_face"]["displacement"][0].get<double>(),
-          p["upper_face"]["displacement"][1].get<double>() - p["lower_face"]["displacement"][1].get<double>()};
+std::array<double, 2> opening(const RunRecord& run) {
+  return {run.probe("upper_face", 0) - run.probe("lower_face", 0), run.probe("upper_face", 1) - run.probe("lower_face", 1)};
+}
+
+/// The crack plate (scenes/crack_plate_2d.yaml) by `method` and `element` at resolution `h` (m), no ParaView files.
+Scene crack_plate(Method method, ElementType element, NodalGradient gradient, double h) {
+  Scene scene = read_scene(study_data_path("scenes/crack_plate_2d.yaml"));
+  scene.discretization.method = method;
+  scene.discretization.fem.element = element;
+  scene.discretization.meshless.gradient = gradient;
+  (method == Method::fem ? scene.discretization.fem.size : scene.discretization.meshless.spacing) = h;
+  scene.output.vtk_every = 0;
+  return scene;
 }
 
 /// Indices of the points no other point beats in both wall time and error, fastest first.
@@ -70,98 +79,97 @@ std::vector<std::size_t> pareto_front(const std::vector<Point>& points, const st
   return front;
 }
 
-}  // namespace
+/// What runs of Hertz: the graded block at finest spacings a / n.
+struct HertzMethod {
+  std::string label;
+  hertz::MethodChoice discretization;
+  std::vector<int> levels;
+};
 
-void pareto_study(const StudyOptions& options) {
-  const bool quick = options.quick;
-  // 1. What runs: Hertz at finest spacings a / n; the crack at node spacings or element sizes h.
-  struct HertzMethod {
-    std::string label;
-    hertz::MethodChoice discretization;
-    std::vector<int> levels;
-  };
-  const std::vector<HertzMethod> hertz_methods =
-      quick ? std::vector<HertzMethod>{{"fem_tet4", {"fem", "tet4"}, {2, 4}},
-                                       {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, {2}}}
-            : std::vector<HertzMethod>{{"fem_tet4", {"fem", "tet4"}, {2, 4, 8}},
-                                       {"fem_tet10", {"fem", "tet10"}, {2, 4}},
-                                       {"efg", {"efg"}, {2, 4}},
-                                       {"nodal_smoothed", {"nodal", "tet4", "smoothed"}, {2, 4}},
-                                       {"nodal", {"nodal", "tet4", "direct"}, {2, 4}}};
-  struct CrackMethod {
-    std::string label;
-    std::vector<std::string> overrides;  // the resolution's key comes last
-    std::vector<std::string> spacings;
-  };
-  const std::vector<std::string> meshless_full{"0.001", "0.000745", "0.0005", "0.0004"};
-  const std::vector<std::string> quick_spacing{"0.001"};
-  const std::vector<CrackMethod> crack_methods{
-      {"nodal", {"discretization.method=nodal"}, quick ? quick_spacing : meshless_full},
-      {"nodal_smoothed",
-       {"discretization.method=nodal", "discretization.meshless.gradient=smoothed"},
-       quick ? quick_spacing : meshless_full},
-      {"efg", {"discretization.method=efg"}, quick ? quick_spacing : meshless_full},
-      {"fem_tri3",
-       {"discretization.method=fem", "discretization.fem.element=tri3"},
-       quick ? quick_spacing : std::vector<std::string>{"0.001", "0.0005", "0.00025"}},  // 2 mm: no node by the support
-      {"fem_tri6",
-       {"discretization.method=fem", "discretization.fem.element=tri6"},
-       quick ? quick_spacing : std::vector<std::string>{"0.002", "0.001", "0.0005"}},
-  };
-  int planned = 1;
-  for (const HertzMethod& m : hertz_methods) planned += static_cast<int>(m.levels.size());
-  for (const CrackMethod& m : crack_methods) planned += static_cast<int>(m.spacings.size());
-  StudyRunner runner("pareto", options, planned);
+std::vector<HertzMethod> hertz_methods(bool quick) {
+  const hertz::MethodChoice tet4{Method::fem}, tet10{Method::fem, ElementType::tet10}, efg{Method::efg},
+      smoothed{Method::nodal, ElementType::tet4, NodalGradient::smoothed}, nodal{Method::nodal};
+  if (quick) return {{"fem_tet4", tet4, {2, 4}}, {"nodal_smoothed", smoothed, {2}}};
+  return {{"fem_tet4", tet4, {2, 4, 8}},
+          {"fem_tet10", tet10, {2, 4}},
+          {"efg", efg, {2, 4}},
+          {"nodal_smoothed", smoothed, {2, 4}},
+          {"nodal", nodal, {2, 4}}};
+}
 
-  // 2. The runs.
-  std::vector<Point> points;
-  for (const HertzMethod& m : hertz_methods)
+/// What runs of the crack: node spacings or element sizes h.
+struct CrackMethod {
+  std::string label;
+  Method method;
+  ElementType element;
+  NodalGradient gradient;
+  std::vector<std::string> spacings;  // as the labels spell them
+};
+
+std::vector<CrackMethod> crack_methods(bool quick) {
+  using Spacings = std::vector<std::string>;
+  const Spacings meshless = quick ? Spacings{"0.001"} : Spacings{"0.001", "0.000745", "0.0005", "0.0004"};
+  const Spacings tri3 = quick ? Spacings{"0.001"} : Spacings{"0.001", "0.0005", "0.00025"};  // 2 mm: no node by the support
+  const Spacings tri6 = quick ? Spacings{"0.001"} : Spacings{"0.002", "0.001", "0.0005"};
+  return {
+      {"nodal", Method::nodal, ElementType::tri3, NodalGradient::direct, meshless},
+      {"nodal_smoothed", Method::nodal, ElementType::tri3, NodalGradient::smoothed, meshless},
+      {"efg", Method::efg, ElementType::tri3, NodalGradient::direct, meshless},
+      {"fem_tri3", Method::fem, ElementType::tri3, NodalGradient::direct, tri3},
+      {"fem_tri6", Method::fem, ElementType::tri6, NodalGradient::direct, tri6},
+  };
+}
+
+void run_hertz(StudyRunner& runner, bool quick, std::vector<Point>& points) {
+  for (const HertzMethod& m : hertz_methods(quick))
     for (int n : m.levels) {
-      Point p{"hertz", m.label, static_cast<double>(n), Json(), NAN, NAN};
-      p.summary = runner.run("hertz_" + m.label + "_a" + std::to_string(n), hertz::graded_scene(m.discretization, n));
-      if (p.summary.value("status", "") == "ok") {
-        const double depth = p.summary["probes"]["indent"]["indentation"].get<double>();
+      Point p{"hertz", m.label, static_cast<double>(n)};
+      p.run = runner.run("hertz_" + m.label + "_a" + std::to_string(n), hertz::graded_scene(m.discretization, n));
+      if (p.run.ok()) {
+        const double depth = p.run.probe("indent");
         p.error_percent = 100.0 * std::abs(depth - hertz::indentation()) / hertz::indentation();
-        p.wall_s = wall_time(p.summary);
+        p.wall_s = wall_time(p.run);
       }
       points.push_back(p);
     }
-  const std::string crack_scene = read_scene_text(study_data_path("scenes/crack_plate_2d.yaml"));
-  const Json reference = runner.run(
-      "crack_reference", crack_scene,
-      {"discretization.method=fem", "discretization.fem.element=tri6", "discretization.fem.size=0.0005",
-       "discretization.refine=[{box: {min: [-0.012, -0.003], max: [0.012, 0.003]}, size: 0.0001}]",
-       "output.vtk=false"});
-  KERF_CHECK(reference.value("status", "") == "ok", "the crack reference (fem remesh tri6) failed: ",
-             reference.value("error", ""));
+}
+
+/// The crack's runs against its reference; answers the reference's opening.
+std::array<double, 2> run_crack(StudyRunner& runner, bool quick, std::vector<Point>& points) {
+  // The reference: tri6, 0.5 mm, refined to 0.1 mm about the crack.
+  Scene fine = crack_plate(Method::fem, ElementType::tri6, NodalGradient::direct, 0.0005);
+  fine.discretization.refine = {{Box{Vec3(-0.012, -0.003, 0), Vec3(0.012, 0.003, 0)}, 0.0001}};
+  const RunRecord reference = runner.run("crack_reference", fine);
+  KERF_CHECK(reference.ok(), "the crack reference (fem remesh tri6) failed: ", reference.error);
   const std::array<double, 2> exact = opening(reference);
-  for (const CrackMethod& m : crack_methods)
+  for (const CrackMethod& m : crack_methods(quick))
     for (const std::string& h : m.spacings) {
-      std::vector<std::string> overrides = m.overrides;
-      overrides.push_back(m.label.starts_with("fem") ? "discretization.fem.size=" + h
-                                                     : "discretization.meshless.spacing=" + h);
-      overrides.push_back("output.vtk=false");
-      Point p{"crack", m.label, std::stod(h), Json(), NAN, NAN};
-      p.summary = runner.run("crack_" + m.label + "_h" + h, crack_scene, overrides);
-      if (p.summary.value("status", "") == "ok") {
-        const std::array<double, 2> delta = opening(p.summary);
+      Point p{"crack", m.label, std::stod(h)};
+      p.run = runner.run("crack_" + m.label + "_h" + h, crack_plate(m.method, m.element, m.gradient, std::stod(h)));
+      if (p.run.ok()) {
+        const std::array<double, 2> delta = opening(p.run);
         p.error_percent =
             100.0 * std::hypot(delta[0] - exact[0], delta[1] - exact[1]) / std::hypot(exact[0], exact[1]);
-        p.wall_s = wall_time(p.summary);
+        p.wall_s = wall_time(p.run);
       }
       points.push_back(p);
     }
+  return exact;
+}
 
-  // 3. Tables, fronts, plot.
+/// pareto.csv and pareto.json: every point, and each problem's front with its headline.
+void write_results(const StudyRunner& runner, bool quick, const std::vector<Point>& points,
+                   const std::array<double, 2>& exact) {
   CsvTable table(runner.out_dir() + "/pareto.csv",
                  {"problem", "method", "resolution", "nodes", "dofs", "wall_s", "error_percent", "status"});
   Json all = Json::array();
   for (const Point& p : points) {
     const bool ok = p.ok();
     Json row = {{"problem", p.problem}, {"method", p.method}, {"resolution", p.resolution},
-                {"nodes", ok ? p.summary["counts"]["nodes"] : Json()}, {"dofs", ok ? p.summary["counts"]["dofs"] : Json()},
+                {"nodes", ok ? Json(p.run.report.counts.nodes) : Json()},
+                {"dofs", ok ? Json(p.run.report.counts.dofs) : Json()},
                 {"wall_s", ok ? Json(p.wall_s) : Json()}, {"error_percent", ok ? Json(p.error_percent) : Json()},
-                {"status", ok ? std::string("ok") : p.summary.value("error", std::string("failed"))}};
+                {"status", ok ? std::string("ok") : p.run.error}};
     table.row({row["problem"], row["method"], row["resolution"], row["nodes"], row["dofs"], row["wall_s"],
                row["error_percent"], ok ? Json("ok") : Json("error")});
     all.push_back(row);
@@ -179,17 +187,16 @@ void pareto_study(const StudyOptions& options) {
     }
     fronts[problem] = front;
   }
-  const Json result = {{"study", "pareto"},
-                       {"quick", quick},
-                       {"headline", headline},
-                       {"plots", {"pareto.png"}},
-                       {"crack_reference_opening_m", exact},
-                       {"fronts", fronts},
-                       {"points", all}};
-  write_json(runner.out_dir() + "/pareto.json", result);
-  plot("pareto", runner.out_dir());
+  write_json(runner.out_dir() + "/pareto.json", {{"study", "pareto"},
+                                                 {"quick", quick},
+                                                 {"headline", headline},
+                                                 {"plots", {"pareto.png"}},
+                                                 {"crack_reference_opening_m", exact},
+                                                 {"fronts", fronts},
+                                                 {"points", all}});
+}
 
-  // 4. The claims.
+void check_pareto_claims(const std::vector<Point>& points, bool quick) {
   for (const Point& p : points)
     check_claim(p.ok(), p.problem + " " + p.method + " at " + std::to_string(p.resolution) + " ran");
   std::map<std::string, std::map<std::string, std::vector<const Point*>>> series;  // problem, method: coarsest first
@@ -219,6 +226,26 @@ void pareto_study(const StudyOptions& options) {
     for (const Point* p : series["crack"][fem])
       check_claim(efg < p->error_percent, std::string("crack: efg at its finest spacing is more accurate than ") + fem +
                                               " at " + std::to_string(p->resolution) + " m");
+}
+
+}  // namespace
+
+void pareto_study(const StudyOptions& options) {
+  // 1. What runs: Hertz at finest spacings a / n; the crack at node spacings or element sizes h.
+  int planned = 1;
+  for (const HertzMethod& m : hertz_methods(options.quick)) planned += static_cast<int>(m.levels.size());
+  for (const CrackMethod& m : crack_methods(options.quick)) planned += static_cast<int>(m.spacings.size());
+  StudyRunner runner("pareto", options, planned);
+
+  // 2. The runs.
+  std::vector<Point> points;
+  run_hertz(runner, options.quick, points);
+  const std::array<double, 2> exact = run_crack(runner, options.quick, points);
+
+  // 3. Tables, fronts, plot; 4. the claims.
+  write_results(runner, options.quick, points, exact);
+  plot("pareto", runner.out_dir());
+  check_pareto_claims(points, options.quick);
 }
 
 }  // namespace kerf

@@ -24,9 +24,9 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
-#include <sstream>
 #include <thread>
 
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -36,74 +36,70 @@ struct Problem {
   std::string label;
   bool weak = false;
   int steps = 1;  // time steps of a dynamic problem
-  std::string (*scene)(double size, int steps);
+  Scene (*scene)(double size, int steps);
   double size;  // mesh size at one rank (m); weak scaling shrinks it with the ranks
 };
 
-std::string cantilever(double size, int /*steps: static*/) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: scaling\n"
-    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.02, 0.02]}}\n"
-    << "material: {model: linear, young: 1.0e6, poisson: 0.3, density: 1000.0}\n"
-    << "discretization: {method: fem, fem: {element: tet10, size: " << size << "}}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n"
-    << "solve: {analysis: static, linear_solver: petsc, linear_tolerance: 1.0e-8}\n"
-    << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: probe, point: [0.1, 0.01, 0.01], field: displacement}\n";
-  return s.str();
+Scene cantilever(double size, int /*steps: static*/) {
+  using namespace study_scene;
+  Scene scene = box_body("scaling", Vec3(0, 0, 0), Vec3(0.1, 0.02, 0.02));
+  scene.material = material(MaterialModel::linear, 1.0e6, 0.3);
+  scene.discretization.fem.element = ElementType::tet10;
+  scene.discretization.fem.size = size;
+  scene.boundary = {held(0, 0.0)};
+  scene.gravity = Vec3(0, 0, -9.81);
+  scene.solve.linear_solver = LinearSolverKind::petsc;
+  scene.solve.linear_tolerance = 1.0e-8;
+  scene.output.probes = {displacement_probe("probe", Vec3(0.1, 0.01, 0.01))};
+  return scene;
 }
 
-std::string corotational_cube(double size, int steps) {
-  return implicit_cube_scene("scaling", size, steps, "petsc", "", "probe");
+Scene corotational_cube(double size, int steps) {
+  return study_scene::implicit_cube("scaling", size, steps, LinearSolverKind::petsc, "", "probe");
 }
 
 /// The corotational cube by central differences, steps of 0.4 ms: under the
 /// critical step of the finest mesh run (0.49 ms at 2.5 mm).
-std::string explicit_cube(double size, int steps) {
-  std::string scene = implicit_cube_scene("scaling", size, 1, "petsc", "", "probe");
-  const auto replace = [&](const std::string& from, const std::string& to) {
-    scene.replace(scene.find(from), from.size(), to);
-  };
-  replace("integrator: implicit-euler", "integrator: central-difference");
-  replace("dt: 0.01", "dt: 0.0004");
-  replace("duration: 0.01", "duration: " + std::to_string(0.0004 * steps));
+Scene explicit_cube(double size, int steps) {
+  Scene scene = corotational_cube(size, 1);
+  scene.solve.integrator = Integrator::central_difference;
+  scene.solve.dt = 0.0004;
+  scene.solve.duration = 0.0004 * steps;
   return scene;
 }
 
-const char* const phases[] = {"setup", "assembly", "factorize", "solve", "output"};
+const Phase phases[] = {Phase::setup, Phase::assembly, Phase::factorize, Phase::solve, Phase::output};
 
-double largest(const Json& figures) {
+std::string key_of(Phase phase) { return std::string(phase_names[static_cast<int>(phase)]) + "_s"; }
+
+/// The largest of every rank's memory mark `mark`.
+double largest(const std::vector<MemoryMarks>& ranks, double MemoryMarks::*mark) {
   double most = 0.0;
-  for (const Json& f : figures) most = std::max(most, f.get<double>());
+  for (const MemoryMarks& m : ranks) most = std::max(most, m.*mark);
   return most;
 }
 
-/// One point's row: its figures from the run's summary.
-Json point_of(const Problem& problem, int ranks, int threads, const Json& summary) {
+/// One point's row: its figures from the run's record.
+Json point_of(const Problem& problem, int ranks, int threads, const LaunchedRun& launched) {
   Json point = {{"problem", problem.label}, {"ranks", ranks}, {"threads", threads}};
-  if (summary.value("status", "") != "ok") {
-    point["status"] = summary.value("error", std::string("failed"));
+  const RunRecord& run = launched.run;
+  if (!run.ok()) {
+    point["status"] = run.error;
     return point;
   }
-  const Json& p = summary["timing"]["phases"];
-  for (const char* phase : phases) point[std::string(phase) + "_s"] = p[std::string(phase) + "_s"];
+  for (const Phase phase : phases) point[key_of(phase)] = run.report.phases.seconds(phase);
+  const std::vector<MemoryMarks>& memory = run.report.parallel.memory_by_rank;
   point.update({{"status", "ok"},
-                {"dofs", summary["counts"]["dofs"]},
-                {"wall_s", summary["wall_s"]},
-                {"loop_s", summary["timing"]["solve_s"]},
-                {"partitioned", summary["parallel"]["partitioned"]},
-                {"rank0_touched_rows", summary["parallel"]["rank0_touched_rows"]},
-                {"rank0_peak_memory_mb", summary["parallel"]["rank0_peak_memory_mb"]},
-                {"largest_rank_peak_memory_mb", largest(summary["parallel"]["peak_memory_mb_by_rank"]["at_end"])},
-                {"largest_rank_memory_after_body_mb",
-                 largest(summary["parallel"]["peak_memory_mb_by_rank"]["after_body"])},
-                {"linear_iterations", summary["solver"]["linear_iterations"]},
-                {"probe_z_m", summary["probes"]["probe"]["displacement"][2]}});
+                {"dofs", run.report.counts.dofs},
+                {"wall_s", launched.wall_s},
+                {"loop_s", run.report.solve_seconds},
+                {"partitioned", run.report.parallel.partitioned},
+                {"rank0_touched_rows", run.report.parallel.touched_rows},
+                {"rank0_peak_memory_mb", run.peak_memory_mb},
+                {"largest_rank_peak_memory_mb", largest(memory, &MemoryMarks::at_end)},
+                {"largest_rank_memory_after_body_mb", largest(memory, &MemoryMarks::after_body)},
+                {"linear_iterations", run.report.solver.linear_iterations},
+                {"probe_z_m", run.probe("probe", 2)}});
   return point;
 }
 
@@ -129,9 +125,10 @@ Json strong_speedups(const std::vector<Problem>& problems, const Json& points) {
     for (const Json& p : points) {
       if (p["problem"] != problem.label || p["status"] != "ok" || &p == one) continue;
       Json s = {{"problem", problem.label}, {"ranks", p["ranks"]}, {"threads", p["threads"]}};
-      for (const char* phase : phases) {
-        const double mine = phase_sum(p, {phase});
-        s[phase] = mine > 0.0 ? phase_sum(*one, {phase}) / mine : 0.0;
+      for (const Phase phase : phases) {
+        const char* name = phase_names[static_cast<int>(phase)];
+        const double mine = phase_sum(p, {name});
+        s[name] = mine > 0.0 ? phase_sum(*one, {name}) / mine : 0.0;
       }
       s["assembly_factorize_solve"] = phase_sum(*one, {"assembly", "factorize", "solve"}) /
                                       phase_sum(p, {"assembly", "factorize", "solve"});
@@ -170,7 +167,7 @@ void scaling_study(const StudyOptions& options) {
 
   // 2. Run each.
   std::vector<std::string> columns{"problem", "ranks", "threads", "dofs", "wall_s", "loop_s"};
-  for (const char* phase : phases) columns.push_back(std::string(phase) + "_s");
+  for (const Phase phase : phases) columns.push_back(key_of(phase));
   for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
                         "linear_iterations", "probe_z_m", "status"})
     columns.push_back(c);
@@ -186,7 +183,7 @@ void scaling_study(const StudyOptions& options) {
                                   runner.run_on_ranks(label, problem.scene(size, problem.steps), launch.ranks, launch.threads));
       std::vector<Json> row{problem.label, launch.ranks, launch.threads, point.value("dofs", Json()),
                             point.value("wall_s", Json()), point.value("loop_s", Json())};
-      for (const char* phase : phases) row.push_back(point.value(std::string(phase) + "_s", Json()));
+      for (const Phase phase : phases) row.push_back(point.value(key_of(phase), Json()));
       for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
                             "linear_iterations", "probe_z_m"})
         row.push_back(point.value(c, Json()));

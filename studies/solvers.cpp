@@ -12,15 +12,15 @@
 //   gamg         PETSc CG + GAMG, the hierarchy rebuilt every step;
 //   gamg_reuse   the same keeping the first step's hierarchy;
 //   cg           Eigen CG with a diagonal preconditioner.
-// Read from each run's summary: the median and the largest step (the first
+// Read from each run's record: the median and the largest step (the first
 // holds the factorization or the hierarchy), phases per step, linear
 // iterations. Speed is measured here, never asserted; the claims checked are
 // that every point ran and that all solvers give the same sag (the solve is
 // the only thing that differs).
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -33,11 +33,13 @@ struct Size {
 };
 
 struct Solver {
-  std::string label, linear_solver, petsc;
+  std::string label;
+  LinearSolverKind linear_solver;
+  std::string petsc;
 };
 
-std::string scene_text(const Size& size, const Solver& solver) {
-  return implicit_cube_scene("solvers", size.spacing, size.steps, solver.linear_solver, solver.petsc, "top");
+Scene scene_of(const Size& size, const Solver& solver) {
+  return study_scene::implicit_cube("solvers", size.spacing, size.steps, solver.linear_solver, solver.petsc, "top");
 }
 
 }  // namespace
@@ -50,10 +52,10 @@ void solvers_study(const StudyOptions& options) {
   else
     sizes = {{"6k", 0.0054, 5}, {"50k", 0.0027, 5}, {"200k", 0.0017, 3}};
   const std::vector<Solver> solvers{
-      {"cholmod", "cholmod", ""},
-      {"gamg", "petsc", "-ksp_type cg -pc_type gamg"},
-      {"gamg_reuse", "petsc", "-ksp_type cg -pc_type gamg -ksp_reuse_preconditioner"},
-      {"cg", "cg", ""},
+      {"cholmod", LinearSolverKind::cholmod, ""},
+      {"gamg", LinearSolverKind::petsc, "-ksp_type cg -pc_type gamg"},
+      {"gamg_reuse", LinearSolverKind::petsc, "-ksp_type cg -pc_type gamg -ksp_reuse_preconditioner"},
+      {"cg", LinearSolverKind::cg, ""},
   };
   StudyRunner runner("solvers", options, static_cast<int>(sizes.size() * solvers.size()));
 
@@ -64,30 +66,30 @@ void solvers_study(const StudyOptions& options) {
   Json points = Json::array();
   for (const Size& size : sizes)
     for (const Solver& solver : solvers) {
-      const Json summary = runner.run(size.label + "_" + solver.label, scene_text(size, solver));
+      const RunRecord run = runner.run(size.label + "_" + solver.label, scene_of(size, solver));
       Json point = {{"size", size.label}, {"solver", solver.label}};
-      if (summary.value("status", "") != "ok") {
-        point["status"] = summary.value("error", std::string("failed"));
+      if (!run.ok()) {
+        point["status"] = run.error;
         table.row({size.label, solver.label, Json(), Json(), size.steps, Json(), Json(), Json(), Json(), Json(),
                    Json(), Json(), Json(), "error"});
         points.push_back(point);
         continue;
       }
-      const Json& solver_report = summary["solver"];
+      const SolverCounters& counters = run.report.solver;
       const double iterations =
-          (solver_report["linear_iterations"].get<double>() + solver_report["pcg_iterations"].get<double>()) /
+          (static_cast<double>(counters.linear_iterations) + static_cast<double>(counters.pcg_iterations)) /
           size.steps;
-      point.update({{"nodes", summary["counts"]["nodes"]},
-                    {"dofs", summary["counts"]["dofs"]},
+      point.update({{"nodes", run.report.counts.nodes},
+                    {"dofs", run.report.counts.dofs},
                     {"steps", size.steps},
-                    {"step_median_ms", summary["timing"]["step_ms"]["median"]},
-                    {"step_max_ms", summary["timing"]["step_ms"]["max"]},
-                    {"assembly_ms", phase_ms_per_step(summary, "assembly", size.steps)},
-                    {"factorize_ms", phase_ms_per_step(summary, "factorize", size.steps)},
-                    {"solve_ms", phase_ms_per_step(summary, "solve", size.steps)},
+                    {"step_median_ms", run.step_ms.median_ms},
+                    {"step_max_ms", run.step_ms.max_ms},
+                    {"assembly_ms", phase_ms_per_step(run, Phase::assembly, size.steps)},
+                    {"factorize_ms", phase_ms_per_step(run, Phase::factorize, size.steps)},
+                    {"solve_ms", phase_ms_per_step(run, Phase::solve, size.steps)},
                     {"linear_iterations_per_step", iterations},
-                    {"setup_s", summary["timing"]["setup_s"]},
-                    {"top_z_m", summary["probes"]["top"]["displacement"][2]},
+                    {"setup_s", run.report.setup_seconds},
+                    {"top_z_m", run.probe("top", 2)},
                     {"status", "ok"}});
       table.row({size.label, solver.label, point["nodes"], point["dofs"], size.steps, point["step_median_ms"],
                  point["step_max_ms"], point["assembly_ms"], point["factorize_ms"], point["solve_ms"], iterations,

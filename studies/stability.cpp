@@ -47,9 +47,8 @@
 
 #include "core/run_report.h"
 #include "discretization/body_factory.h"
-#include "output/atomic_file.h"
-#include "problem/scene_reader.h"
 #include "solvers/sparse_assembly.h"
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -60,63 +59,68 @@ namespace {
 constexpr double young = 3.0e4, density = 1000.0;
 constexpr double spacing = 0.0025;  // m: nodes and element size of the cantilever
 
+/// Central differences, `steps` of `dt`, a dt above the critical step allowed (the bisection looks for it).
+SolveOptions explicit_solve(double dt, int steps) {
+  SolveOptions solve;
+  solve.analysis = Analysis::dynamic;
+  solve.integrator = Integrator::central_difference;
+  solve.dt = dt;
+  solve.duration = dt * steps;
+  solve.allow_unstable_dt = true;
+  return solve;
+}
+
 /// One variant of a method: what it needs under `discretization`.
 struct Variant {
-  std::string label, method, element = "tet4", gradient = "direct";
+  std::string label;
+  Method method;
+  ElementType element = ElementType::tet4;
+  NodalGradient gradient = NodalGradient::direct;
   bool stabilized = true;
   bool explicit_steps = true;  // run with central differences here (EFG is this project's implicit method)
 };
 
 const std::vector<Variant>& all_methods() {
   static const std::vector<Variant> methods{
-      {"fem_tet4", "fem"},
-      {"fem_tet10", "fem", "tet10"},
-      {"efg", "efg", "tet4", "direct", true, false},
-      {"nodal", "nodal"},
-      {"nodal_smoothed", "nodal", "tet4", "smoothed"},
-      {"nodal_unstabilized", "nodal", "tet4", "direct", false},
+      {"fem_tet4", Method::fem},
+      {"fem_tet10", Method::fem, ElementType::tet10},
+      {"efg", Method::efg, ElementType::tet4, NodalGradient::direct, true, false},
+      {"nodal", Method::nodal},
+      {"nodal_smoothed", Method::nodal, ElementType::tet4, NodalGradient::smoothed},
+      {"nodal_unstabilized", Method::nodal, ElementType::tet4, NodalGradient::direct, false},
   };
   return methods;
 }
 
-std::string discretization(const Variant& m, double h) {
-  std::ostringstream s;
-  s << "discretization:\n"
-    << "  method: " << m.method << "\n"
-    << "  fem: {element: " << m.element << ", size: " << h << "}\n"
-    << "  meshless: {spacing: " << h << ", gradient: " << m.gradient
-    << ", stabilization: " << (m.stabilized ? "true" : "false") << "}\n";
-  return s.str();
+DiscretizationOptions discretization(const Variant& m, double h) {
+  DiscretizationOptions d;
+  d.method = m.method;
+  d.fem.element = m.element;
+  d.fem.size = h;
+  d.meshless.spacing = h;
+  d.meshless.gradient = m.gradient;
+  d.meshless.stabilization = m.stabilized ? NodalStabilization::hourglass : NodalStabilization::none;
+  return d;
 }
 
-/// The cantilever: clamped at x = 0; `loads` and `solve` as YAML lines.
-std::string cantilever(const Variant& m, const std::string& model, double poisson, double h, const std::string& loads,
-                       const std::string& solve, const std::string& probes) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: stability\n"
-    << "domain: {box: {min: [0, 0, 0], max: [0.05, 0.01, 0.01]}}\n"
-    << "material: {model: " << model << ", young: " << young << ", poisson: " << poisson
-    << ", density: " << density << "}\n"
-    << discretization(m, h) << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x, y, z]}\n"
-    << loads << solve << "output:\n  vtk: false\n  probes:\n" << probes;
-  return s.str();
+/// The cantilever (5 x 1 x 1 cm, clamped at x = 0) of `m` at `h`, loads and solve left to the caller.
+Scene cantilever(const Variant& m, MaterialModel model, double poisson, double h) {
+  using namespace study_scene;
+  Scene scene = box_body("stability", Vec3(0, 0, 0), Vec3(0.05, 0.01, 0.01));
+  scene.material = material(model, young, poisson, density);
+  scene.discretization = discretization(m, h);
+  scene.boundary = {held(0, 0.0)};
+  return scene;
 }
 
-const std::string gravity = "body_force: {gravity: [0, 0, -9.81]}\n";
-const std::string energy_probe = "    - {name: energy, field: energy}\n";
-
-std::string explicit_solve(double dt, int steps) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "solve: {analysis: dynamic, integrator: central-difference, dt: " << dt << ", duration: " << dt * steps
-    << ", allow_unstable_dt: true}\n";
-  return s.str();
-}
-
-double solver_counter(const Json& summary, const std::string& name) {
-  return summary.contains("solver") && summary["solver"].contains(name) ? summary["solver"][name].get<double>() : NAN;
+/// The cantilever sagging under gravity, undamped, by central differences
+/// (`steps` of `dt`, unstable steps allowed), with an energy probe.
+Scene sagging_cantilever(const Variant& m, MaterialModel model, double dt, int steps) {
+  Scene scene = cantilever(m, model, 0.3, spacing);
+  scene.gravity = Vec3(0, 0, -9.81);
+  scene.solve = explicit_solve(dt, steps);
+  scene.output.probes = {study_scene::energy_probe("energy")};
+  return scene;
 }
 
 /// Energy figures of a dynamic run with an energy probe.
@@ -151,9 +155,7 @@ bool bounded(const EnergyHistory& e) { return e.finite && e.max_mechanical <= 2.
 /// The eigenvalues of K x = omega^2 M x (1/s^2, ascending) of a free body,
 /// with its consistent mass (a mode that hardly moves the field then has
 /// little mass too, so only modes soft in energy show up as soft).
-Eigen::VectorXd free_spectrum(const std::string& yaml, const std::string& file) {
-  write_file_atomically(file, yaml);  // kept beside the runs' scenes
-  const Scene scene = parse_scene(yaml, file, ".", {});
+Eigen::VectorXd free_spectrum(const Scene& scene) {
   RunReport report;
   const std::unique_ptr<DiscreteBody> body = make_body(scene, report);
   SparseMatrix K = build_pattern(*body), M = build_pattern(*body);
@@ -163,38 +165,43 @@ Eigen::VectorXd free_spectrum(const std::string& yaml, const std::string& file) 
   return Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd>(k, m, Eigen::EigenvaluesOnly).eigenvalues();
 }
 
+/// A rule of the zigzag part: an enrichment and, for the grid, its lookup.
+struct Rule {
+  std::string label;
+  Enrichment enrichment;
+  GridLookup lookup = GridLookup::exact;
+};
+
 /// The zigzag: 200 pieces from the plate's left edge to its centre, +-0.1 mm
 /// about y = 0.5 mm (between node rows), one piece every 4e-5 s when growing.
-std::string zigzag_scene(const std::string& rule, bool growing, double dt, int steps) {
+Scene zigzag_scene(const Rule& rule, bool growing, double dt, int steps) {
+  using namespace study_scene;
   const int pieces = 200;
-  std::ostringstream s, vertices, times;
-  s.precision(10);
-  vertices.precision(10);
-  times.precision(10);
+  Cut cut;
   for (int k = 0; k <= pieces; ++k) {
     const double x = -0.0205 + 0.0205 * k / pieces;
     const double y = 0.0005 + (k == 0 ? 0.0 : (k % 2 ? 1e-4 : -1e-4));
-    vertices << (k ? ", " : "") << "[" << x << ", " << y << "]";
-    times << (k ? ", " : "") << (k < 2 ? 0.0 : (k - 1) * 4e-5);
+    cut.vertices.push_back(Vec3(as_written(x), as_written(y), 0));  // its end on the node column x = 0
+    if (growing) cut.times.push_back(k < 2 ? 0.0 : (k - 1) * 4e-5);
   }
-  const bool interpolated = rule == "grid-interpolated";
-  s << "name: zigzag\n"
-    << "dimension: 2\n"
-    << "domain: {box: {min: [-0.02, -0.02], max: [0.02, 0.02]}}\n"
-    << "material: {model: linear, young: 1.0e6, poisson: 0.3, density: 1000.0, damping: {mass: 200.0}}\n"
-    << "discretization: {method: nodal, meshless: {spacing: 0.001, support: 2.8}}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: y, at: -0.02}}, fix: [x, y]}\n"
-    << "  - {select: {plane: {axis: y, at: 0.02}}, traction: [0, 1000]}\n"
-    << "cuts:\n"
-    << "  - polyline: [" << vertices.str() << "]\n"
-    << (growing ? "    times: [" + times.str() + "]\n" : "")
-    << "    enrichment: " << (interpolated ? "grid" : rule) << "\n"
-    << (interpolated ? "    grid: {lookup: interpolated}\n" : "")
-    << "solve: {analysis: dynamic, integrator: central-difference, dt: " << dt << ", duration: " << dt * steps
-    << ", allow_unstable_dt: true}\n"
-    << "output:\n  vtk: false\n  probes:\n" << energy_probe;
-  return s.str();
+  if (!growing) cut.times.assign(cut.vertices.size(), 0.0);
+  cut.enrichment = rule.enrichment;
+  cut.grid_lookup = rule.lookup;
+  Scene scene = box_body("zigzag", Vec3(-0.02, -0.02, 0), Vec3(0.02, 0.02, 0));
+  scene.dimension = 2;
+  scene.discretization.fem.element = ElementType::tri3;
+  scene.material = material(MaterialModel::linear, 1.0e6, 0.3, 1000.0, 200.0);
+  scene.discretization.method = Method::nodal;
+  scene.discretization.meshless.spacing = 0.001;
+  scene.discretization.meshless.support = 2.8;
+  BoundaryCondition pulled;
+  pulled.select = plane(1, 0.02);
+  pulled.traction = Vec3(0, 1000, 0);
+  scene.boundary = {held(1, -0.02, {true, true, false}), pulled};
+  scene.cuts = {cut};
+  scene.solve = explicit_solve(dt, steps);
+  scene.output.probes = {energy_probe("energy")};
+  return scene;
 }
 
 /// What the five experiments share: the study's runner and tables, the
@@ -213,10 +220,9 @@ struct Experiments {
   }
   void claim(bool holds, const std::string& what) { claims.emplace_back(holds, what); }
   /// A planned run that must finish (bisection probes may diverge by design).
-  bool ran(const Json& summary, const std::string& label) {
-    const bool ok = summary.value("status", "") == "ok";
-    claim(ok, label + " ran (" + summary.value("error", std::string("ok")) + ")");
-    return ok;
+  bool ran(const RunRecord& run, const std::string& label) {
+    claim(run.ok(), label + " ran (" + (run.ok() ? std::string("ok") : run.error) + ")");
+    return run.ok();
   }
 };
 
@@ -229,20 +235,21 @@ Json critical_step(Experiments& x) {
   for (const Variant& m : all_methods()) {
     if (!m.explicit_steps) continue;
     auto probe = [&](const std::string& label, double dt, int steps) {
-      return x.runner.run(label, cantilever(m, "linear", 0.3, spacing, gravity, explicit_solve(dt, steps), energy_probe));
+      return x.runner.run(label, sagging_cantilever(m, MaterialModel::linear, dt, steps));
     };
-    const Json first = probe("critical_" + m.label + "_estimate", 1e-7, 1);
+    const RunRecord first = probe("critical_" + m.label + "_estimate", 1e-7, 1);
     x.ran(first, "critical_" + m.label + "_estimate");
-    const double estimate = x.estimate[m.label] = solver_counter(first, "critical_dt_s");
-    const double element_bound = solver_counter(first, "critical_dt_element_bound_s");
+    const SolverCounters& counters = first.report.solver;
+    const double estimate = x.estimate[m.label] = counters.critical_dt_s.value_or(NAN);
+    const double element_bound = counters.critical_dt_element_bound_s.value_or(NAN);
     // Unstable means the run diverged: its energy unbounded, or the state NaN
     // (summary.json's "diverged"). Any other failure is not a finding of
     // this study: it fails the study, naming the run.
     auto stable = [&](double f) {
       std::ostringstream label;
       label << "critical_" << m.label << "_f" << f;
-      const Json s = probe(label.str(), f * estimate, probe_steps);
-      if (s.value("diverged", false)) return false;
+      const RunRecord s = probe(label.str(), f * estimate, probe_steps);
+      if (s.diverged) return false;
       if (!x.ran(s, label.str())) return false;
       return bounded(energy_history(x.runner.out_dir() + "/runs/" + label.str()));
     };
@@ -286,12 +293,11 @@ Json energy_drift(Experiments& x) {
     if (!m.explicit_steps) continue;
     const std::string label = "drift_" + m.label;
     const double dt = 0.9 * x.estimate[m.label];
-    const Json s =
-        x.runner.run(label, cantilever(m, "corotational", 0.3, spacing, gravity, explicit_solve(dt, steps), energy_probe));
+    const RunRecord s = x.runner.run(label, sagging_cantilever(m, MaterialModel::corotational, dt, steps));
     const bool ok = x.ran(s, label);
     const EnergyHistory e = energy_history(x.runner.out_dir() + "/runs/" + label);
     const double relative = ok && e.finite && e.max_strain > 0.0 ? e.max_imbalance / e.max_strain : NAN;
-    drift[m.label] = {{"status", s.value("status", "error")}, {"dt_s", dt}, {"steps", steps},
+    drift[m.label] = {{"status", s.ok() ? "ok" : "error"}, {"dt_s", dt}, {"steps", steps},
                       {"duration_s", dt * steps}, {"max_energy_error_over_max_strain", std::isfinite(relative) ? Json(relative) : Json()},
                       {"max_mechanical_over_max_work", e.max_work > 0 ? Json(e.max_mechanical / e.max_work) : Json()}};
     x.number("energy_drift", m.label, "max_energy_error_over_max_strain", relative, "1");
@@ -309,13 +315,12 @@ Json zero_energy_modes(Experiments& x) {
   Json modes = Json::object();
   double softest_physical = NAN;  // tet4's 7th eigenvalue (1/s^2)
   for (const Variant& m : all_methods()) {
-    if (m.element == "tet10") continue;
-    std::ostringstream yaml;
-    yaml << "name: modes\n"
-         << "domain: {box: {min: [0, 0, 0], max: [0.02, 0.01, 0.01]}}\n"
-         << "material: {model: linear, young: " << young << ", poisson: 0.3, density: " << density << "}\n"
-         << discretization(m, spacing) << "solve: {analysis: static}\n";
-    const Eigen::VectorXd omega2 = free_spectrum(yaml.str(), x.runner.out_dir() + "/scenes/modes_" + m.label + ".yaml");
+    if (m.element == ElementType::tet10) continue;
+    Scene block = study_scene::box_body("modes", Vec3(0, 0, 0), Vec3(0.02, 0.01, 0.01));
+    block.material = study_scene::material(MaterialModel::linear, young, 0.3, density);
+    block.discretization = discretization(m, spacing);
+    // Its file is kept beside the runs' scenes (a spectrum, not a run).
+    const Eigen::VectorXd omega2 = free_spectrum(x.runner.write_scene("modes_" + m.label, block));
     if (m.label == "fem_tet4") softest_physical = omega2[6];
     int spurious = 0;
     for (Index i = 6; i < omega2.size(); ++i) spurious += omega2[i] < 0.1 * softest_physical;
@@ -334,31 +339,32 @@ Json zero_energy_modes(Experiments& x) {
 }
 
 /// 4. The 200-piece zigzag: whole cut at once, then growing.
-Json zigzag_cut(Experiments& x, const std::vector<std::string>& rules) {
+Json zigzag_cut(Experiments& x, const std::vector<Rule>& rules) {
   Json zigzag = Json::object();
   const double growing_dt = 5e-6;
-  for (const std::string& rule : rules) {
-    const Json whole = x.runner.run("zigzag_whole_" + rule, zigzag_scene(rule, false, 1e-7, 1));
+  for (const Rule& r : rules) {
+    const std::string& rule = r.label;
+    const RunRecord whole = x.runner.run("zigzag_whole_" + rule, zigzag_scene(r, false, 1e-7, 1));
     x.ran(whole, "zigzag_whole_" + rule);
     const std::string label = "zigzag_growing_" + rule;
-    const Json growing = x.runner.run(label, zigzag_scene(rule, true, growing_dt, 2000));
+    const RunRecord growing = x.runner.run(label, zigzag_scene(r, true, growing_dt, 2000));
     const bool ok = x.ran(growing, label);
     const EnergyHistory e = energy_history(x.runner.out_dir() + "/runs/" + label);
     const bool gain_known = ok && e.finite && e.max_work > 0;
-    Json z = {{"critical_dt_s", solver_counter(whole, "critical_dt_s")},
-              {"condition_median", solver_counter(whole, "mls_condition_median")},
-              {"condition_near_cut_max", solver_counter(whole, "mls_condition_near_cut_max")},
-              {"condition_near_tip_max", solver_counter(whole, "mls_condition_near_tip_max")},
-              {"growing_status", growing.value("status", "error")},
+    Json z = {{"critical_dt_s", whole.report.solver.critical_dt_s.value_or(NAN)},
+              {"condition_median", whole.extra("mls_condition_median")},
+              {"condition_near_cut_max", whole.extra("mls_condition_near_cut_max")},
+              {"condition_near_tip_max", whole.extra("mls_condition_near_tip_max")},
+              {"growing_status", growing.ok() ? "ok" : "error"},
               {"growing_dt_s", growing_dt},
               {"growing_mechanical_over_work", gain_known ? Json(e.max_mechanical / e.max_work) : Json()},
-              {"cut_update_ms_median", growing.contains("timing") ? growing["timing"]["cut_update_ms"]["median"] : Json()}};
+              {"cut_update_ms_median", growing.ok() ? Json(growing.cut_update_ms.median_ms) : Json()}};
     for (const auto& [key, value] : z.items())
       if (value.is_number()) x.number("zigzag", rule, key, value.get<double>(), "");
     zigzag[rule] = z;
     x.runner.say(rule + ": near-cut condition " + z["condition_near_cut_max"].dump() + ", critical dt " +
                  z["critical_dt_s"].dump() + " s, growing run K+U over work " + z["growing_mechanical_over_work"].dump());
-    if (rule != "multiplicative")
+    if (r.enrichment != Enrichment::multiplicative)
       x.claim(gain_known && e.max_mechanical <= e.max_work,
               "the growing zigzag cut with " + rule + " creates no energy (kinetic + strain <= work of the load; it is " +
                   z["growing_mechanical_over_work"].dump() + ")");
@@ -379,15 +385,18 @@ Json zigzag_cut(Experiments& x, const std::vector<std::string>& rules) {
 /// 5. Locking: tip deflection under an end load against tet10 at half the size.
 Json locking(Experiments& x) {
   Json out = Json::object();
-  const std::string end_load = "  - {select: {plane: {axis: x, at: 0.05}}, traction: [0, 0, -10]}\n";
-  const std::string tip = "    - {name: tip, point: [0.05, 0.005, 0.005], field: displacement}\n";
-  const Variant reference{"fem_tet10_fine", "fem", "tet10"};
+  BoundaryCondition end_load;
+  end_load.select = study_scene::plane(0, 0.05);
+  end_load.traction = Vec3(0, 0, -10);
+  const Variant reference{"fem_tet10_fine", Method::fem, ElementType::tet10};
   for (const char* nu : {"0.3", "0.49"}) {
     auto deflection = [&](const Variant& m, double h) {
       const std::string label = "locking_" + m.label + "_nu" + nu;
-      const Json s = x.runner.run(label, cantilever(m, "linear", std::stod(nu), h, end_load,
-                                                    "solve: {analysis: static}\n", tip));
-      return x.ran(s, label) ? -s["probes"]["tip"]["displacement"][2].get<double>() : NAN;
+      Scene scene = cantilever(m, MaterialModel::linear, std::stod(nu), h);
+      scene.boundary.push_back(end_load);
+      scene.output.probes = {study_scene::displacement_probe("tip", Vec3(0.05, 0.005, 0.005))};
+      const RunRecord s = x.runner.run(label, scene);
+      return x.ran(s, label) ? -s.probe("tip", 2) : NAN;
     };
     const double exact = deflection(reference, x.quick ? spacing : spacing / 2);
     out["reference_deflection_m_nu" + std::string(nu)] = exact;
@@ -436,9 +445,11 @@ Json headline(const Json& result) {
 
 void stability_study(const StudyOptions& options) {
   const bool quick = options.quick;
-  const std::vector<std::string> rules =
-      quick ? std::vector<std::string>{"grid", "multiplicative"}
-            : std::vector<std::string>{"grid", "grid-interpolated", "multiplicative", "visibility", "diffraction"};
+  const Rule grid{"grid", Enrichment::grid}, interpolated{"grid-interpolated", Enrichment::grid, GridLookup::interpolated},
+      multiplicative{"multiplicative", Enrichment::multiplicative}, visibility{"visibility", Enrichment::visibility},
+      diffraction{"diffraction", Enrichment::diffraction};
+  const std::vector<Rule> rules = quick ? std::vector<Rule>{grid, multiplicative}
+                                        : std::vector<Rule>{grid, interpolated, multiplicative, visibility, diffraction};
   const int methods = static_cast<int>(all_methods().size());
   const int explicit_methods = static_cast<int>(
       std::count_if(all_methods().begin(), all_methods().end(), [](const Variant& m) { return m.explicit_steps; }));

@@ -1,7 +1,8 @@
 #include "studies/study_hertz_problem.h"
 
 #include <cmath>
-#include <sstream>
+
+#include "studies/study_scenes.h"
 
 namespace kerf::hertz {
 
@@ -12,43 +13,37 @@ double force() {
   return 4.0 / 3.0 * e_star * std::sqrt(sphere_radius) * std::pow(indentation(), 1.5);
 }
 
-std::string scene(const MethodChoice& d, double block, double coarse, const std::string& refine) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: hertz\n"
-    << "domain: {box: {min: [0, 0, 0], max: [" << block << ", " << block << ", " << block << "]}}\n"
-    << "material: {model: linear, young: " << young << ", poisson: " << poisson << "}\n"
-    << "discretization:\n"
-    << "  method: " << d.method << "\n"
-    << "  fem: {element: " << d.element << ", size: " << coarse << "}\n"
-    << "  meshless: {spacing: " << coarse << ", gradient: " << d.gradient << "}\n"
-    << "  refine:" << (refine.empty() ? " []\n" : "\n" + refine)
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: x, at: 0}}, fix: [x]}\n"
-    << "  - {select: {plane: {axis: y, at: 0}}, fix: [y]}\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "contact:\n"
-    << "  - sphere: {center: [0, 0, " << block + sphere_radius << "], radius: " << sphere_radius << "}\n"
-    << "    force: [0, 0, " << -force() / 4.0 << "]\n"
-    << "solve: {analysis: static}\n"
-    << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: indent, contact: 0, field: indentation}\n"
-    << "    - {name: push, contact: 0, field: contact_force}\n";
-  return s.str();
+Scene scene(const MethodChoice& d, double block, double coarse, const std::vector<RefineRegion>& refine) {
+  using namespace study_scene;
+  Scene scene = box_body("hertz", Vec3(0, 0, 0), Vec3(block, block, block));
+  scene.material = material(MaterialModel::linear, young, poisson);
+  DiscretizationOptions& discretization = scene.discretization;
+  discretization.method = d.method;
+  discretization.fem.element = d.element;
+  discretization.fem.size = coarse;
+  discretization.meshless.spacing = coarse;
+  discretization.meshless.gradient = d.gradient;
+  discretization.refine = refine;
+  scene.boundary = {held(0, 0.0, {true, false, false}), held(1, 0.0, {false, true, false}), held(2, 0.0)};
+  ContactSphere sphere;
+  sphere.center = Vec3(0, 0, block + sphere_radius);
+  sphere.radius = sphere_radius;
+  sphere.force = Vec3(0, 0, -force() / 4.0);
+  scene.contact = {sphere};
+  scene.output.probes = {contact_probe("indent", 0, ProbeField::indentation),
+                         contact_probe("push", 0, ProbeField::contact_force)};
+  return scene;
 }
 
-std::string graded_scene(const MethodChoice& d, int n) {
+Scene graded_scene(const MethodChoice& d, int n) {
   const double h = contact_radius / n;
-  std::ostringstream refine;
-  refine.precision(12);
+  std::vector<RefineRegion> refine;
   for (int k = 0; k < graded_levels; ++k) {
     const double edge = finest_box * std::ldexp(1.0, k);
-    refine << "    - {box: {min: [0, 0, " << graded_block - edge << "], max: [" << edge << ", " << edge << ", "
-           << graded_block << "]}, size: " << h * std::ldexp(1.0, k) << "}\n";
+    refine.push_back({Box{Vec3(0, 0, study_scene::as_written(graded_block - edge)), Vec3(edge, edge, graded_block)},
+                      h * std::ldexp(1.0, k)});
   }
-  return scene(d, graded_block, h * std::ldexp(1.0, graded_levels), refine.str());
+  return scene(d, graded_block, h * std::ldexp(1.0, graded_levels), refine);
 }
 
 }  // namespace kerf::hertz

@@ -2,7 +2,9 @@
 // The Hertz problem the `hertz` and `pareto` studies share: a quarter block
 // pressed by a rigid sphere with the force that gives a contact radius
 // a = R / 10 on a half-space (see studies/hertz.cpp for the whole setting).
-#include <string>
+#include <vector>
+
+#include "problem/scene.h"
 
 namespace kerf::hertz {
 
@@ -21,17 +23,19 @@ double force();
 
 /// A discretization of the block: method, FEM element, meshless gradient.
 struct MethodChoice {
-  std::string method, element = "tet4", gradient = "direct";
+  Method method;
+  ElementType element = ElementType::tet4;
+  NodalGradient gradient = NodalGradient::direct;
 };
 
 /// The scene: a quarter block of edge `block`, spacing `coarse` outside the
-/// refine boxes `refine` (YAML list items), the sphere touching the top face;
-/// probes `indent` (indentation) and `push` (contact force).
-std::string scene(const MethodChoice& d, double block, double coarse, const std::string& refine);
+/// refine boxes `refine`, the sphere touching the top face; probes `indent`
+/// (indentation) and `push` (contact force).
+Scene scene(const MethodChoice& d, double block, double coarse, const std::vector<RefineRegion>& refine = {});
 
 /// The graded scene whose finest spacing is a / n: nested refine boxes at the
 /// contact, box k of edge finest_box 2^k and spacing h 2^k, so each coarser
 /// lattice falls on the finer one inside it, out to graded_block.
-std::string graded_scene(const MethodChoice& d, int n);
+Scene graded_scene(const MethodChoice& d, int n);
 
 }  // namespace kerf::hertz

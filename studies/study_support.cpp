@@ -18,6 +18,7 @@
 #include "core/interrupt.h"
 #include "core/timer.h"
 #include "output/atomic_file.h"
+#include "problem/scene_json.h"
 #include "problem/scene_reader.h"
 
 namespace kerf {
@@ -29,25 +30,31 @@ StudyRunner::StudyRunner(std::string study, const StudyOptions& options, int pla
   std::filesystem::create_directories(out_ + "/runs");
 }
 
-Json StudyRunner::run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides) {
-  const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
-  std::string header;  // how to run the point again by hand
-  if (!overrides.empty()) {
-    header = "# run with: kerf run " + label + ".yaml";
-    for (const std::string& o : overrides) header += " --set '" + o + "'";
-    header += "\n";
-  }
+Scene StudyRunner::write_scene(const std::string& label, const Scene& scene) const {
+  const std::string file = out_ + "/scenes/" + label + ".yaml";
+  Scene resolved = scene;
+  resolved.output.dir = out_ + "/runs/" + label;
+  const Json written = scene_to_json(resolved);
+  write_file_atomically(file, "# kerf study " + study_ + ", point " + label +
+                                  ": the resolved scene (every key) it ran; run again with: kerf run " + file + "\n" +
+                                  written.dump(2) + "\n");
+  Scene read = read_scene(file);
+  KERF_CHECK(scene_to_json(read) == written, "internal: the study's scene ", file,
+             " does not read back as the scene the study built");
+  return read;
+}
+
+RunRecord StudyRunner::run(const std::string& label, const Scene& scene) {
   stop_if_interrupted("before the study's point ", label);
-  write_file_atomically(scene_file, header + yaml);
   ++done_;
   const double start = now_seconds();
+  const std::string run_dir = out_ + "/runs/" + label;
   Json summary;
   try {
-    Scene scene = parse_scene(yaml, scene_file, out_ + "/scenes", overrides);
     RunOptions options;
-    options.out_dir = out_ + "/runs/" + label;
+    options.out_dir = run_dir;
     options.quiet = true;
-    summary = run_scene(scene, options).summary;
+    summary = run_scene(write_scene(label, scene), options).summary;
   } catch (const Interrupted&) {
     throw;  // a signal stops the study, not only its point
   } catch (const std::exception& e) {
@@ -58,15 +65,16 @@ Json StudyRunner::run(const std::string& label, const std::string& yaml, const s
   // the next point's estimate is held to the memory available (crack3d's
   // nodal 0.6 mm points were refused after EFG's, 14 of 24 GB available).
   malloc_trim(0);
-  report_point(label, summary, start);
-  return summary;
+  RunRecord record = record_of_summary(summary, run_dir);
+  report_point(label, record, start);
+  return record;
 }
 
-Json StudyRunner::run_on_ranks(const std::string& label, const std::string& yaml, int ranks, int threads) {
+LaunchedRun StudyRunner::run_on_ranks(const std::string& label, const Scene& scene, int ranks, int threads) {
   const std::string scene_file = out_ + "/scenes/" + label + ".yaml";
   const std::string run_dir = out_ + "/runs/" + label;
   stop_if_interrupted("before the study's point ", label);
-  write_file_atomically(scene_file, yaml);
+  write_scene(label, scene);
   std::filesystem::remove_all(run_dir);
   ++done_;
   // mpirun refuses root without --allow-run-as-root, and more ranks than cores without --oversubscribe.
@@ -80,63 +88,39 @@ Json StudyRunner::run_on_ranks(const std::string& label, const std::string& yaml
   command += "'" + kerf + "' run '" + scene_file + "' --out '" + run_dir + "' --quiet 2>'" + run_dir + ".log'";
   const double start = now_seconds();
   const int status = std::system(command.c_str());
-  const double wall = now_seconds() - start;
-  Json summary;
-  std::ifstream in(run_dir + "/summary.json");
-  if (in)
-    summary = Json::parse(in, nullptr, false);
+  LaunchedRun launched{{}, now_seconds() - start};
   // Ctrl-C reaches mpirun and its ranks (one process group); a SIGTERM sent
   // to the study alone is seen when the point ends.
   stop_if_interrupted("in the study's point ", label, " (run on ", ranks, " ranks)");
-  if (summary.is_object() && summary.value("status", "") == "interrupted")
-    throw Interrupted(SIGINT, "in the study's point " + label + " (run on " + std::to_string(ranks) + " ranks)");
-  if (!in || summary.is_discarded() || status != 0)
-    summary = {{"status", "error"},
-               {"error", command + " exited with " + std::to_string(status) + "; see " + run_dir + ".log"}};
-  summary["wall_s"] = wall;
-  report_point(label, summary, start);
-  return summary;
+  const std::string where = "in the study's point " + label + " (run on " + std::to_string(ranks) + " ranks)";
+  try {
+    launched.run = read_outcome(run_dir);
+  } catch (const Error& e) {
+    launched.run.directory = run_dir;
+    launched.run.status = RunStatus::error;
+    launched.run.error = e.what();
+  }
+  if (launched.run.status == RunStatus::interrupted) throw Interrupted(SIGINT, where);
+  if (status != 0) {
+    launched.run.status = RunStatus::error;
+    launched.run.error = command + " exited with " + std::to_string(status) + "; see " + run_dir + ".log";
+  }
+  report_point(label, launched.run, start);
+  return launched;
 }
 
-void StudyRunner::report_point(const std::string& label, const Json& summary, double start) {
+void StudyRunner::report_point(const std::string& label, const RunRecord& run, double start) {
+  const char* status[] = {"running", "ok", "error", "interrupted"};
   std::ostringstream line;
-  line << "[" << done_ << "/" << planned_ << "] " << label << ": " << summary.value("status", "?") << " in "
+  line << "[" << done_ << "/" << planned_ << "] " << label << ": " << status[static_cast<int>(run.status)] << " in "
        << std::fixed << std::setprecision(1) << now_seconds() - start << " s (study " << now_seconds() - start_
        << " s)";
-  if (summary.value("status", "") == "error") line << "\n    " << summary.value("error", "");
+  if (run.status == RunStatus::error) line << "\n    " << run.error;
   say(line.str());
 }
 
-std::string implicit_cube_scene(const std::string& name, double size, int steps, const std::string& linear_solver,
-                                const std::string& petsc, const std::string& probe) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: " << name << "\n"
-    << "domain: {box: {min: [0, 0, 0], max: [0.1, 0.1, 0.1]}}\n"
-    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
-    << "discretization: {method: fem, fem: {element: tet4, size: " << size << "}}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n"
-    << "solve:\n"
-    << "  analysis: dynamic\n"
-    << "  integrator: implicit-euler\n"
-    << "  dt: 0.01\n"
-    << "  duration: " << 0.01 * steps << "\n"
-    << "  newton: {max_iterations: 1}\n"
-    << "  linear_solver: " << linear_solver << "\n"
-    << "  linear_tolerance: 1.0e-8\n";
-  if (!petsc.empty()) s << "  petsc: '" << petsc << "'\n";
-  s << "output:\n"
-    << "  vtk: false\n"
-    << "  probes:\n"
-    << "    - {name: " << probe << ", point: [0.05, 0.05, 0.1], field: displacement}\n";
-  return s.str();
-}
-
-double phase_ms_per_step(const Json& summary, const std::string& phase, int steps) {
-  const Json& phases = summary["timing"]["phases"];
-  return phases.contains(phase + "_s") ? 1e3 * phases[phase + "_s"].get<double>() / steps : 0.0;
+double phase_ms_per_step(const RunRecord& run, Phase phase, int steps) {
+  return 1e3 * run.report.phases.seconds(phase) / steps;
 }
 
 void StudyRunner::say(const std::string& text) const {
@@ -240,10 +224,10 @@ Json observed_orders(const std::vector<Json>& points, const std::vector<std::pai
   return orders;
 }
 
-double whole_run_seconds(const Json& summary) {
-  double run = 0.0;
-  for (const auto& [phase, seconds] : summary["timing"]["phases"].items()) run += seconds.get<double>();
-  return run;
+double whole_run_seconds(const RunRecord& run) {
+  double seconds = 0.0;
+  for (std::size_t p = 0; p < phase_names.size(); ++p) seconds += run.report.phases.seconds(static_cast<Phase>(p));
+  return seconds;
 }
 
 }  // namespace kerf

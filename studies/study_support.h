@@ -1,38 +1,54 @@
 #pragma once
-// What the studies share: running a scene given as text (the scene is kept
-// next to the results, so any point of a study can be run again by hand),
-// progress lines, CSV tables, plots by Debian's python3, and claims.
+// What the studies share: running a Scene (its resolved file is kept next to
+// the results, so any point of a study can be run again by hand) and reading
+// its typed record, progress lines, CSV tables, plots by Debian's python3,
+// and claims. The scenes' common parts are in studies/study_scenes.h.
 #include <nlohmann/json.hpp>
 #include <map>
 #include <string>
 #include <utility>
 #include <vector>
 
+#include "app/run_record.h"
+#include "problem/scene.h"
 #include "studies/study.h"
 
 namespace kerf {
 
 using Json = nlohmann::ordered_json;
 
+/// A point run as its own `kerf run` (mpirun): its record and the launch's wall time.
+struct LaunchedRun {
+  RunRecord run;
+  double wall_s = 0.0;
+};
+
 class StudyRunner {
  public:
   StudyRunner(std::string study, const StudyOptions& options, int planned_runs);
 
-  /// Writes `yaml` to <out>/scenes/<label>.yaml, runs it into <out>/runs/<label>
-  /// and returns its summary.json (status "error" and the message when it failed:
-  /// a study records a failed point and goes on).
-  Json run(const std::string& label, const std::string& yaml, const std::vector<std::string>& overrides = {});
+  /// Writes `scene` resolved (every key, as `kerf check` echoes it) to
+  /// <out>/scenes/<label>.yaml, reads that file back and runs it into
+  /// <out>/runs/<label>: the file is what ran, and `kerf run` runs it again.
+  /// A failed point answers status error and the message (a study records
+  /// it and goes on); a signal stops the study.
+  RunRecord run(const std::string& label, const Scene& scene);
   /// The same as a separate `kerf run` on `ranks` MPI ranks (mpirun; 1: no
-  /// mpirun) of `threads` OpenMP threads each; the summary gains `wall_s`,
-  /// the launch's wall time.
-  Json run_on_ranks(const std::string& label, const std::string& yaml, int ranks, int threads);
+  /// mpirun) of `threads` OpenMP threads each, its record read back from its
+  /// summary.json.
+  LaunchedRun run_on_ranks(const std::string& label, const Scene& scene, int ranks, int threads);
+  /// Writes <out>/scenes/<label>.yaml (output.dir: <out>/runs/<label>) and
+  /// answers the scene read back from it; throws when the file would not run
+  /// what `scene` says (an internal error of the study). For a study's work
+  /// that is not a run (a spectrum), so that its scene is kept all the same.
+  Scene write_scene(const std::string& label, const Scene& scene) const;
   /// A progress line (unless quiet).
   void say(const std::string& text) const;
-  /// The progress line of a finished point.
-  void report_point(const std::string& label, const Json& summary, double start);
   const std::string& out_dir() const { return out_; }
 
  private:
+  void report_point(const std::string& label, const RunRecord& run, double start);
+
   std::string study_;
   std::string out_;
   bool quiet_;
@@ -56,17 +72,8 @@ class CsvTable {
 using ProbeHistory = std::map<std::string, std::vector<double>>;
 ProbeHistory read_probe_history(const std::string& run_dir);
 
-/// The solvers and scaling studies' cube: 10 cm of corotational soft tissue
-/// (E = 3 kPa, nu = 0.3) clamped at the bottom, sagging under gravity,
-/// implicit Euler at 10 ms with one linearised solve a step (as SOFA does),
-/// tet4 of `size` (m), `steps` steps, solved by `linear_solver` (with PETSc
-/// options `petsc` when not empty) to 1e-8; a displacement probe named
-/// `probe` at the top's centre.
-std::string implicit_cube_scene(const std::string& name, double size, int steps, const std::string& linear_solver,
-                                const std::string& petsc, const std::string& probe);
-
-/// A phase's mean milliseconds a step, from a run's summary (0 when absent).
-double phase_ms_per_step(const Json& summary, const std::string& phase, int steps);
+/// A phase's mean milliseconds a step over a run's `steps` steps.
+double phase_ms_per_step(const RunRecord& run, Phase phase, int steps);
 
 /// Runs studies/plots/<script>.py on the study's folder with /usr/bin/python3.
 void plot(const std::string& script, const std::string& out_dir);
@@ -88,9 +95,9 @@ double observed_order(const std::vector<double>& h, const std::vector<double>& e
 /// each {name, error key}, the order of that error; and "levels".
 Json observed_orders(const std::vector<Json>& points, const std::vector<std::pair<std::string, std::string>>& errors);
 
-/// A run's cost: the sum of its summary's phases (setup_s and solve_s leave out
+/// A run's cost: the sum of its phases (setup_s and solve_s leave out
 /// the assembly the stepper's start does).
-double whole_run_seconds(const Json& summary);
+double whole_run_seconds(const RunRecord& run);
 
 /// Throws "claim failed: ..." when `holds` is false.
 void check_claim(bool holds, const std::string& claim);

@@ -15,14 +15,14 @@
 // implicit Euler at 10 ms; EFG with implicit Euler at 10 ms. Implicit steps
 // make one linearised solve, as SOFA's EulerImplicitSolver does. Each runs a fixed
 // number of steps; the median step and the phases (assembly, factorize,
-// solve) per step are read from the run's summary. The paper's figures:
+// solve) per step are read from the run's record. The paper's figures:
 // FEM 195 ms a step, meshless 20.11 ms a step, the block at 125 FPS (8 ms).
 // Speed is measured here, never asserted; the claims checked are that every
 // configuration ran, that its phases were timed (explicit steps: the force
 // evaluation, "assembly") and that they fit inside its step time.
 #include <cmath>
-#include <sstream>
 
+#include "studies/study_scenes.h"
 #include "studies/study_support.h"
 
 namespace kerf {
@@ -35,27 +35,25 @@ struct Problem {
 };
 
 struct Configuration {
-  std::string label, method, integrator;
+  std::string label;
+  Method method;
+  Integrator integrator;
   double dt;  // s; 0: 0.9 of the critical step
 };
 
-std::string scene_text(const Problem& p, const Configuration& c, double dt, int steps) {
-  std::ostringstream s;
-  s.precision(12);
-  s << "name: timing\n"
-    << "domain: {box: {min: [0, 0, 0], max: [" << p.x << ", " << p.y << ", " << p.z << "]}}\n"
-    << "material: {model: corotational, young: 3000.0, poisson: 0.3, density: 1000.0, damping: {mass: 4.0}}\n"
-    << "discretization:\n"
-    << "  method: " << c.method << "\n"
-    << "  fem: {element: tet4, size: " << p.spacing << "}\n"
-    << "  meshless: {spacing: " << p.spacing << ", support: 2.3}\n"
-    << "boundary:\n"
-    << "  - {select: {plane: {axis: z, at: 0}}, fix: [x, y, z]}\n"
-    << "body_force: {gravity: [0, 0, -9.81]}\n"
-    << "solve: {analysis: dynamic, integrator: " << c.integrator << ", dt: " << dt << ", duration: " << dt * steps
-    << ", newton: {max_iterations: 1}}\n"
-    << "output: {vtk: false}\n";
-  return s.str();
+Scene scene_of(const Problem& p, const Configuration& c, double dt, int steps) {
+  using namespace study_scene;
+  Scene scene = box_body("timing", Vec3(0, 0, 0), Vec3(p.x, p.y, p.z));
+  scene.material = material(MaterialModel::corotational, 3000.0, 0.3, 1000.0, 4.0);
+  scene.discretization.method = c.method;
+  scene.discretization.fem.size = p.spacing;
+  scene.discretization.meshless.spacing = p.spacing;
+  scene.discretization.meshless.support = 2.3;
+  scene.boundary = {held(2, 0.0)};
+  scene.gravity = Vec3(0, 0, -9.81);
+  scene.solve = implicit_steps(dt, steps);
+  scene.solve.integrator = c.integrator;
+  return scene;
 }
 
 }  // namespace
@@ -65,11 +63,11 @@ void timing_study(const StudyOptions& options) {
   std::vector<Problem> problems{{"block", 0.03, 0.05, 0.05, 0.01}};
   if (!options.quick) problems.push_back({"cube", 0.1, 0.1, 0.1, 0.1 / 17});
   const std::vector<Configuration> configurations{
-      {"fem_tet4_implicit_euler", "fem", "implicit-euler", 0.01},
-      {"fem_tet4_central_difference", "fem", "central-difference", 0.0},
-      {"nodal_central_difference", "nodal", "central-difference", 0.001},
-      {"nodal_implicit_euler", "nodal", "implicit-euler", 0.01},
-      {"efg_implicit_euler", "efg", "implicit-euler", 0.01},
+      {"fem_tet4_implicit_euler", Method::fem, Integrator::implicit_euler, 0.01},
+      {"fem_tet4_central_difference", Method::fem, Integrator::central_difference, 0.0},
+      {"nodal_central_difference", Method::nodal, Integrator::central_difference, 0.001},
+      {"nodal_implicit_euler", Method::nodal, Integrator::implicit_euler, 0.01},
+      {"efg_implicit_euler", Method::efg, Integrator::implicit_euler, 0.01},
   };
   const int explicit_steps = options.quick ? 50 : 1000, implicit_steps = options.quick ? 5 : 20;
   int planned = 0;
@@ -84,32 +82,30 @@ void timing_study(const StudyOptions& options) {
   Json points = Json::array();
   for (const Problem& p : problems) {
     for (const Configuration& c : configurations) {
-      const bool is_explicit = c.integrator == "central-difference";
+      const bool is_explicit = c.integrator == Integrator::central_difference;
       const int steps = is_explicit ? explicit_steps : implicit_steps;
       double dt = c.dt;
       if (dt == 0.0) {
-        const Json probe = runner.run(p.name + "_" + c.label + "_critical_step", scene_text(p, c, 1e-7, 1));
-        dt = probe.value("status", "") == "ok" ? 0.9 * probe["solver"]["critical_dt_s"].get<double>() : 1e-4;
+        const RunRecord probe = runner.run(p.name + "_" + c.label + "_critical_step", scene_of(p, c, 1e-7, 1));
+        dt = probe.ok() ? 0.9 * probe.report.solver.critical_dt_s.value() : 1e-4;
       }
-      const Json summary = runner.run(p.name + "_" + c.label, scene_text(p, c, dt, steps));
-      const bool ok = summary.value("status", "") == "ok";
+      const RunRecord run = runner.run(p.name + "_" + c.label, scene_of(p, c, dt, steps));
       Json point = {{"problem", p.name}, {"configuration", c.label}};
-      if (ok) {
-        const double median = summary["timing"]["step_ms"]["median"].get<double>();
-        point.update({{"nodes", summary["counts"]["nodes"]}, {"dofs", summary["counts"]["dofs"]}, {"dt_s", dt},
-                      {"steps", steps}, {"step_median_ms", median},
-                      {"step_mean_ms", summary["timing"]["step_ms"]["mean"]},
-                      {"assembly_ms", phase_ms_per_step(summary, "assembly", steps)},
-                      {"factorize_ms", phase_ms_per_step(summary, "factorize", steps)},
-                      {"solve_ms", phase_ms_per_step(summary, "solve", steps)}, {"setup_s", summary["timing"]["setup_s"]},
-                      {"fps", 1e3 / median}, {"status", "ok"}});
+      if (run.ok()) {
+        const double median = run.step_ms.median_ms;
+        point.update({{"nodes", run.report.counts.nodes}, {"dofs", run.report.counts.dofs}, {"dt_s", dt},
+                      {"steps", steps}, {"step_median_ms", median}, {"step_mean_ms", run.step_ms.mean_ms},
+                      {"assembly_ms", phase_ms_per_step(run, Phase::assembly, steps)},
+                      {"factorize_ms", phase_ms_per_step(run, Phase::factorize, steps)},
+                      {"solve_ms", phase_ms_per_step(run, Phase::solve, steps)},
+                      {"setup_s", run.report.setup_seconds}, {"fps", 1e3 / median}, {"status", "ok"}});
         table.row({p.name, c.label, point["nodes"], point["dofs"], dt, steps, median, point["step_mean_ms"],
                    point["assembly_ms"], point["factorize_ms"], point["solve_ms"], point["setup_s"], point["fps"],
                    "ok"});
         runner.say(p.name + " " + c.label + ": " + std::to_string(median) + " ms a step (" +
                    point["nodes"].dump() + " nodes)");
       } else {
-        point["status"] = summary.value("error", std::string("failed"));
+        point["status"] = run.error;
         table.row({p.name, c.label, Json(), Json(), dt, steps, Json(), Json(), Json(), Json(), Json(), Json(),
                    Json(), "error"});
       }
