@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/run_scene.h"
+#include "app/summary_json.h"
 #include "core/check.h"
 #include "core/interrupt.h"
 #include "kerf/version.h"
@@ -64,6 +65,7 @@ struct Result {
   std::string directory;
   py::object summary;
   std::shared_ptr<const BodySnapshot> body;
+  RunRecord record;
 
   py::array points() const {
     if (body->points.empty()) return py::array_t<double>(std::vector<py::ssize_t>{0, 3});
@@ -96,7 +98,37 @@ Result run(const py::object& source, const std::vector<std::string>& overrides, 
     py::gil_scoped_release free_python;  // a long run; its own threads
     outcome = run_scene(scene, options);
   }
-  return Result{outcome.directory, to_python(outcome.summary), outcome.final_body};
+  return Result{outcome.directory, to_python(outcome.summary), outcome.final_body,
+                record_of_summary(outcome.summary, outcome.directory)};
+}
+
+/// A run's record as Python values: what read_outcome gives C++.
+py::dict record_counts(const RunRecord& r) {
+  const RunCounts& c = r.report.counts;
+  py::dict d;
+  d["nodes"] = c.nodes, d["dofs"] = c.dofs, d["elements"] = c.elements, d["neighbors_mean"] = c.neighbors_mean;
+  return d;
+}
+
+py::dict record_probes(const RunRecord& r) {
+  py::dict d;
+  for (const auto& [name, reading] : r.probes) d[py::str(name)] = reading.values;
+  return d;
+}
+
+py::dict record_timing(const RunRecord& r) {
+  auto stats = [](const DurationStats& s) {
+    py::dict d;
+    d["median"] = s.median_ms, d["mean"] = s.mean_ms, d["max"] = s.max_ms, d["count"] = s.count;
+    return d;
+  };
+  py::dict phases;
+  for (std::size_t p = 0; p < phase_names.size(); ++p)
+    phases[py::str(std::string(phase_names[p]) + "_s")] = r.report.phases.seconds(static_cast<Phase>(p));
+  py::dict d;  // the summary's "timing"
+  d["setup_s"] = r.report.setup_seconds, d["solve_s"] = r.report.solve_seconds, d["phases"] = phases;
+  d["step_ms"] = stats(r.step_ms), d["cut_update_ms"] = stats(r.cut_update_ms);
+  return d;
 }
 
 py::object study(const std::string& name, bool quick, const std::string& out, bool quiet) {
@@ -151,6 +183,7 @@ PYBIND11_MODULE(_kerf, m) {
       .def_readonly("directory", &Result::directory)
       .def_readonly("summary", &Result::summary, "summary.json as a dict")
       .def_property_readonly("probes", [](const Result& r) -> py::object { return r.summary["probes"]; })
+      .def_readonly("record", &Result::record, "the summary typed, as kerf.read_outcome reads it from the folder")
       .def_property_readonly("points", &Result::points,
                              "the reference positions of the body's output points (n x 3, m), a read-only view")
       .def_property_readonly("point_fields", &Result::point_fields,
@@ -164,6 +197,27 @@ PYBIND11_MODULE(_kerf, m) {
                                return fields["displacement"];
                              },
                              "the displacement of each output point at the end (n x 3, m)");
+  py::class_<RunRecord>(m, "Record",
+                        "A run's summary.json read back typed (kerf.read_outcome), as the studies read it")
+      .def_readonly("directory", &RunRecord::directory)
+      .def_property_readonly("status",
+                             [](const RunRecord& r) {
+                               const char* words[] = {"running", "ok", "error", "interrupted"};
+                               return std::string(words[static_cast<int>(r.status)]);
+                             })
+      .def_property_readonly("ok", &RunRecord::ok)
+      .def_readonly("error", &RunRecord::error, "the message of a run that failed")
+      .def_readonly("diverged", &RunRecord::diverged, "the solution blew up (NaN)")
+      .def_property_readonly("counts", &record_counts, "nodes, dofs, elements, neighbors_mean")
+      .def_property_readonly("probes", &record_probes,
+                             "each probe's final values: one per axis, indentation one, energy kinetic, strain, "
+                             "external_work, total")
+      .def_property_readonly("timing", &record_timing, "as summary.json's timing: setup_s, solve_s, phases, step_ms, cut_update_ms")
+      .def_property_readonly("extras", [](const RunRecord& r) { return r.report.extras; },
+                             "the method's own figures (MLS conditioning, ...)");
+  m.def("read_outcome", &read_outcome, py::arg("directory"),
+        "A run's folder (kerf run --out, a study's runs/LABEL) read back as a kerf.Record; raises kerf.Error "
+        "naming summary.json when there is none or it is not a run's");
   m.def("run", &run, py::arg("scene"), py::arg("overrides") = std::vector<std::string>{}, py::arg("out") = "",
         py::arg("quiet") = true, py::arg("force") = false,
         "Runs a scene (a kerf.Scene, a dict, or a file's path) as `kerf run` does, writing its files in out "

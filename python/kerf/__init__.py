@@ -20,6 +20,8 @@ os.environ.setdefault("OMP_THREAD_LIMIT", str(len(os.sched_getaffinity(0)) or 1)
 if "GOMP_SPINCOUNT" not in os.environ:
     os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
-from ._kerf import Error, Result, Scene, __version__, load_scene, run, studies, study  # noqa: E402
+from ._kerf import (Error, Record, Result, Scene, __version__, load_scene, read_outcome, run, studies,  # noqa: E402
+                    study)
 
-__all__ = ["Error", "Result", "Scene", "__version__", "load_scene", "run", "studies", "study"]
+__all__ = ["Error", "Record", "Result", "Scene", "__version__", "load_scene", "read_outcome", "run", "studies",
+           "study"]

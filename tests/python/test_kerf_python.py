@@ -35,6 +35,19 @@ def test_tip_displacement_equals_the_command_lines_to_the_last_digit(tmp_path):
     assert os.path.exists(os.path.join(result.directory, "summary.json"))
 
 
+def test_a_runs_folder_reads_back_typed_as_the_run_reported_it(tmp_path):
+    result = kerf.run(CANTILEVER, TET4, out=str(tmp_path / "run"))
+    record = kerf.read_outcome(result.directory)
+    assert record.ok and record.status == "ok" and not record.diverged
+    assert record.probes["tip"] == result.summary["probes"]["tip"]["displacement"]
+    assert record.counts == {key: result.summary["counts"][key] for key in record.counts}
+    for key in ("setup_s", "solve_s", "phases"):
+        assert record.timing[key] == result.summary["timing"][key]
+    assert result.record.probes == record.probes
+    with pytest.raises(kerf.Error, match="summary.json"):
+        kerf.read_outcome(str(tmp_path / "no_run"))
+
+
 def test_arrays_are_read_only_views_of_the_final_body(tmp_path):
     result = kerf.run(CANTILEVER, TET4, out=str(tmp_path))
     points, u = result.points, result.displacement
