@@ -394,17 +394,20 @@ void crack3d_study(const StudyOptions& options) {
     if (h.size() >= 2 && all_ran)
       orders[m.label] = observed_orders(levels, {{"centre", "centre_error_percent"}, {"front", "front_error_percent"}});
   }
-  const Json result = {
-      {"study", "crack3d"}, {"quick", quick}, {"headline", headline_of(points, orders)}, {"plots", {"crack3d.png"}},
-      {"reference", {{"method", methods[0].label}, {"spacing_m", reference_sizes.back()},
-                     {"tip_size_m", reference_sizes.back() / methods[0].tip_refinement}, {"centre_m", reference.centre},
-                     {"front_mid_m", reference.front}, {"gap_centre_m", reference.gap_centre},
-                     {"gap_front_m", reference.gap_front}}},
-      {"plane_strain_2d", {{"scene", "scenes/crack_plate_2d_quarter_fem.yaml"}, {"centre_m", plate_opening}}},
-      {"front_x_m", front_x}, {"gap_y_m", gap_y}, {"observed_order", orders}, {"points", points}};
-  write_json(runner.out_dir() + "/crack3d.json", result);
+  StudyResult result("crack3d", quick, {"crack3d.png"});
+  result.set_headline(headline_of(points, orders));
+  result["reference"] = {{"method", methods[0].label}, {"spacing_m", reference_sizes.back()},
+                         {"tip_size_m", reference_sizes.back() / methods[0].tip_refinement},
+                         {"centre_m", reference.centre}, {"front_mid_m", reference.front},
+                         {"gap_centre_m", reference.gap_centre}, {"gap_front_m", reference.gap_front}};
+  result["plane_strain_2d"] = {{"scene", "scenes/crack_plate_2d_quarter_fem.yaml"}, {"centre_m", plate_opening}};
+  result["front_x_m"] = front_x;
+  result["gap_y_m"] = gap_y;
+  result["observed_order"] = orders;
+  result["points"] = points;
+  result.write(runner.out_dir());
   plot("crack3d", runner.out_dir());
-  check_crack3d_claims(result, quick);
+  check_crack3d_claims(result.json(), quick);
 }
 
 }  // namespace kerf

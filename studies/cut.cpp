@@ -96,62 +96,29 @@ Scene scene_of(const Way& w, double spacing, double duration, int vtk_every) {
   return scene;
 }
 
-}  // namespace
-
-void cut_study(const StudyOptions& options) {
-  const bool quick = options.quick;
-  const double spacing = quick ? 0.005 : 0.003;  // m
-  const double duration = quick ? 0.3 : 1.5;    // s
-  const int vtk_every = quick ? 400 : 80;
-  const std::vector<Way> ways{
-      {"nodal_grid", Method::nodal, std::nullopt},
-      {"fem_remesh", Method::fem, FemCut::remesh},
-      {"fem_remove", Method::fem, FemCut::remove},
-      {"fem_split", Method::fem, FemCut::split},
-      {"nodal_uncut", Method::nodal, std::nullopt, false},
-      {"fem_uncut", Method::fem, std::nullopt, false},
-  };
-  StudyRunner runner("cut", options, static_cast<int>(ways.size()));
-  CsvTable table(runner.out_dir() + "/cut.csv",
-                 {"way", "nodes", "updates", "update_ms_median", "update_ms_max", "step_ms_median", "end_sag_m",
-                  "opening_m", "status"});
-  Json runs = Json::object();
-  for (const Way& w : ways) {
-    const RunRecord run = runner.run(w.label, scene_of(w, spacing, duration, vtk_every));
-    const bool ok = run.ok();
-    Json r = {{"status", ok ? std::string("ok") : run.error}};
-    if (ok) {
-      r["nodes"] = run.report.counts.nodes;
-      r["updates"] = run.cut_update_ms.count;
-      r["update_ms_median"] = run.cut_update_ms.median_ms;
-      r["update_ms_max"] = run.cut_update_ms.max_ms;
-      r["refresh_ms_median"] = run.cut_refresh_ms.median_ms;
-      r["step_ms_median"] = run.step_ms.median_ms;
-      r["end_sag_m"] = -run.probe("end", 2);
-      r["opening_m"] = run.probe("behind", 0) - run.probe("before", 0);
-      r["paraview"] = "runs/" + w.label + "/cut.pvd";
-    }
-    table.row({w.label, r.value("nodes", Json()), r.value("updates", Json()), r.value("update_ms_median", Json()),
-               r.value("update_ms_max", Json()), r.value("step_ms_median", Json()), r.value("end_sag_m", Json()),
-               r.value("opening_m", Json()), ok ? "ok" : "error"});
-    runs[w.label] = r;
+/// One way's run: its figures and its CSV row.
+Json run_way(StudyRunner& runner, CsvTable& table, const Way& w, const Scene& scene) {
+  const RunRecord run = runner.run(w.label, scene);
+  const bool ok = run.ok();
+  Json r = {{"status", ok ? std::string("ok") : run.error}};
+  if (ok) {
+    r["nodes"] = run.report.counts.nodes;
+    r["updates"] = run.cut_update_ms.count;
+    r["update_ms_median"] = run.cut_update_ms.median_ms;
+    r["update_ms_max"] = run.cut_update_ms.max_ms;
+    r["refresh_ms_median"] = run.cut_refresh_ms.median_ms;
+    r["step_ms_median"] = run.step_ms.median_ms;
+    r["end_sag_m"] = -run.probe("end", 2);
+    r["opening_m"] = run.probe("behind", 0) - run.probe("before", 0);
+    r["paraview"] = "runs/" + w.label + "/cut.pvd";
   }
+  table.row({w.label, r.value("nodes", Json()), r.value("updates", Json()), r.value("update_ms_median", Json()),
+             r.value("update_ms_max", Json()), r.value("step_ms_median", Json()), r.value("end_sag_m", Json()),
+             r.value("opening_m", Json()), ok ? "ok" : "error"});
+  return r;
+}
 
-  Json headline = Json::array();
-  for (const Way& w : ways) {
-    if (!w.cut || runs[w.label]["status"] != "ok") continue;
-    headline.push_back({{"what", w.label + ": median cut update"}, {"value", runs[w.label]["update_ms_median"]},
-                        {"unit", "ms"}});
-    headline.push_back({{"what", w.label + ": opening 4 mm either side of the blade"},
-                        {"value", 1e3 * runs[w.label]["opening_m"].get<double>()}, {"unit", "mm"}});
-  }
-  const Json result = {{"study", "cut"},         {"quick", quick},   {"headline", headline},
-                       {"plots", {"cut.png"}},   {"spacing_m", spacing}, {"duration_s", duration},
-                       {"runs", runs}};
-  write_json(runner.out_dir() + "/cut.json", result);
-  plot("cut", runner.out_dir());
-
-  // The claims: what results/cuts.md says of the runs in words.
+void check_cut_claims(const std::vector<Way>& ways, Json& runs, bool quick) {
   for (const Way& w : ways)
     check_claim(runs[w.label]["status"] == "ok", w.label + " ran (" + runs[w.label]["status"].get<std::string>() + ")");
   for (const Way& w : ways) {
@@ -174,6 +141,45 @@ void cut_study(const StudyOptions& options) {
               "cut, the remeshed block sags less than with cells removed, the meshless one most (" +
                   std::to_string(sag("fem_remesh")) + " < " + std::to_string(sag("fem_remove")) + " < " +
                   std::to_string(sag("nodal_grid")) + " m)");
+}
+
+}  // namespace
+
+void cut_study(const StudyOptions& options) {
+  const bool quick = options.quick;
+  const double spacing = quick ? 0.005 : 0.003;  // m
+  const double duration = quick ? 0.3 : 1.5;    // s
+  const int vtk_every = quick ? 400 : 80;
+  const std::vector<Way> ways{
+      {"nodal_grid", Method::nodal, std::nullopt},
+      {"fem_remesh", Method::fem, FemCut::remesh},
+      {"fem_remove", Method::fem, FemCut::remove},
+      {"fem_split", Method::fem, FemCut::split},
+      {"nodal_uncut", Method::nodal, std::nullopt, false},
+      {"fem_uncut", Method::fem, std::nullopt, false},
+  };
+  StudyRunner runner("cut", options, static_cast<int>(ways.size()));
+  CsvTable table(runner.out_dir() + "/cut.csv",
+                 {"way", "nodes", "updates", "update_ms_median", "update_ms_max", "step_ms_median", "end_sag_m",
+                  "opening_m", "status"});
+  Json runs = Json::object();
+  for (const Way& w : ways) runs[w.label] = run_way(runner, table, w, scene_of(w, spacing, duration, vtk_every));
+
+  StudyResult result("cut", quick, {"cut.png"});
+  for (const Way& w : ways) {
+    if (!w.cut || runs[w.label]["status"] != "ok") continue;
+    result.headline(w.label + ": median cut update", runs[w.label]["update_ms_median"], "ms");
+    result.headline(w.label + ": opening 4 mm either side of the blade",
+                    1e3 * runs[w.label]["opening_m"].get<double>(), "mm");
+  }
+  result["spacing_m"] = spacing;
+  result["duration_s"] = duration;
+  result["runs"] = runs;
+  result.write(runner.out_dir());
+  plot("cut", runner.out_dir());
+
+  // The claims: what results/cuts.md says of the runs in words.
+  check_cut_claims(ways, runs, quick);
 }
 
 }  // namespace kerf

@@ -249,28 +249,22 @@ void write_results(const StudyRunner& runner, const StudyOptions& options, const
   Json finest = Json::object();
   for (const Json& p : points)
     if (p["family"] == "graded" && p["status"] == "ok") finest[p["method"].get<std::string>()] = p;
-  Json headline = Json::array();
+  StudyResult result("hertz", options.quick, {"hertz.png"});
   for (const auto& [method, p] : finest.items())
-    headline.push_back({{"what", method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " +
-                                     p["nodes"].dump() + " nodes" + order_in_words(rates[method]["order"])},
-                        {"value", p["error_percent"]},
-                        {"unit", "%"}});
-  Json result = {{"study", "hertz"},
-                 {"headline", headline},
-                 {"plots", {"hertz.png"}},
-                 {"quick", options.quick},
-                 {"hertz", {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
-                            {"indentation_m", indentation()}, {"force_N", force()},
-                            {"young_Pa", young}, {"poisson", poisson}}},
-                 {"reference", {{"method", reference_method}, {"indentation_m", reference},
-                                {"off_hertz_percent", percent_off(reference, indentation())},
-                                {"from_quick_constant", options.quick}}},
-                 {"rates_against_reference", rates},
-                 {"fit_floor_percent", fit_floor},
-                 {"bound_percent", hertz_bound},
-                 {"finest_graded", finest},
-                 {"points", points}};
-  write_json(runner.out_dir() + "/hertz.json", result);
+    result.headline(method + " indentation error at a/h = " + p["a_over_h"].dump() + ", " + p["nodes"].dump() +
+                        " nodes" + order_in_words(rates[method]["order"]),
+                    p["error_percent"], "%");
+  result["hertz"] = {{"contact_radius_m", contact_radius}, {"sphere_radius_m", sphere_radius},
+                     {"indentation_m", indentation()}, {"force_N", force()}, {"young_Pa", young}, {"poisson", poisson}};
+  result["reference"] = {{"method", reference_method}, {"indentation_m", reference},
+                         {"off_hertz_percent", percent_off(reference, indentation())},
+                         {"from_quick_constant", options.quick}};
+  result["rates_against_reference"] = rates;
+  result["fit_floor_percent"] = fit_floor;
+  result["bound_percent"] = hertz_bound;
+  result["finest_graded"] = finest;
+  result["points"] = points;
+  result.write(runner.out_dir());
   plot("hertz", runner.out_dir());
 }
 

@@ -95,66 +95,31 @@ Figures figures(const RunRecord& run) {
   return {run.probe("top", 2), run.probe("end", 2), run.probe("energy", 1)};
 }
 
-}  // namespace
+/// One way at one mesh size against the reference: its point and its CSV row.
+Json run_way(StudyRunner& runner, CsvTable& table, const Way& w, double size, const std::string& mesh,
+             const Figures& ref) {
+  std::ostringstream label;
+  label << w.label << "_" << size * 1000 << "mm";
+  const RunRecord run = runner.run(label.str(), organ_scene(mesh, w));
+  const bool ok = run.ok();
+  Json p = {{"way", w.label}, {"spacing_m", size}, {"status", ok ? "ok" : run.error}};
+  if (ok) {
+    const Figures f = figures(run);
+    p["nodes"] = run.report.counts.nodes;
+    p["top_error_percent"] = percent_off(f.top, ref.top);
+    p["end_error_percent"] = percent_off(f.end, ref.end);
+    p["energy_error_percent"] = percent_off(f.energy, ref.energy);
+    p["ic_residual_max"] = run.extra("ic_residual_max");
+    p["setup_s"] = run.report.setup_seconds;
+    p["solve_s"] = run.report.solve_seconds;
+  }
+  table.row({p["way"], size, p.value("nodes", Json()), p.value("top_error_percent", Json()),
+             p.value("end_error_percent", Json()), p.value("energy_error_percent", Json()),
+             p.value("ic_residual_max", Json()), p.value("setup_s", Json()), p.value("solve_s", Json()), p["status"]});
+  return p;
+}
 
-void organ_study(const StudyOptions& options) {
-  const bool quick = options.quick;
-  const double reference_size = quick ? 0.003 : 0.0015;  // m
-  const std::vector<double> sizes = quick ? std::vector<double>{0.004} : std::vector<double>{0.004, 0.003, 0.002};
-  StudyRunner runner("organ", options, static_cast<int>(1 + ways.size() * sizes.size()));
-  const std::string meshes = runner.out_dir() + "/meshes";
-  std::filesystem::create_directories(meshes);
-  auto mesh_file = [&](double size, int order) {
-    std::ostringstream name;
-    name << meshes << "/organ_" << size * 1000 << "mm_o" << order << ".msh";
-    if (!std::filesystem::exists(name.str())) mesh_organ(name.str(), size, order);
-    return std::filesystem::absolute(name.str()).string();
-  };
-
-  // 1. The reference.
-  Scene reference_scene = organ_scene(mesh_file(reference_size, 2));
-  reference_scene.discretization.method = Method::fem;
-  reference_scene.discretization.fem.element = ElementType::tet10;
-  const RunRecord ref_run = runner.run("tet10_reference", reference_scene);
-  check_claim(ref_run.ok(), "the tet10 reference runs (" + ref_run.error + ")");
-  const Figures ref = figures(ref_run);
-
-  // 2. Each way at each size.
-  CsvTable table(runner.out_dir() + "/organ.csv",
-                 {"way", "size_m", "nodes", "top_error_percent", "end_error_percent", "energy_error_percent",
-                  "ic_residual_max", "setup_s", "solve_s", "status"});
-  Json points = Json::array();
-  for (const Way& w : ways)
-    for (double size : sizes) {
-      std::ostringstream label;
-      label << w.label << "_" << size * 1000 << "mm";
-      const RunRecord run = runner.run(label.str(), organ_scene(mesh_file(size, 1), w));
-      const bool ok = run.ok();
-      Json p = {{"way", w.label}, {"spacing_m", size}, {"status", ok ? "ok" : run.error}};
-      if (ok) {
-        const Figures f = figures(run);
-        p["nodes"] = run.report.counts.nodes;
-        p["top_error_percent"] = percent_off(f.top, ref.top);
-        p["end_error_percent"] = percent_off(f.end, ref.end);
-        p["energy_error_percent"] = percent_off(f.energy, ref.energy);
-        p["ic_residual_max"] = run.extra("ic_residual_max");
-        p["setup_s"] = run.report.setup_seconds;
-        p["solve_s"] = run.report.solve_seconds;
-      }
-      table.row({p["way"], size, p.value("nodes", Json()), p.value("top_error_percent", Json()),
-                 p.value("end_error_percent", Json()), p.value("energy_error_percent", Json()),
-                 p.value("ic_residual_max", Json()), p.value("setup_s", Json()), p.value("solve_s", Json()),
-                 p["status"]});
-      points.push_back(p);
-    }
-  write_json(runner.out_dir() + "/organ.json",
-             {{"reference", {{"element", "tet10"}, {"size_m", reference_size}, {"top_m", ref.top}, {"end_m", ref.end},
-                             {"strain_energy_J", ref.energy}}},
-              {"points", points}});
-
-  if (!quick) plot("organ", runner.out_dir());
-
-  // 3. Claims.
+void check_organ_claims(const Json& points, const std::vector<double>& sizes, bool quick) {
   auto point = [&](const std::string& way, double size) -> const Json& {
     for (const Json& p : points)
       if (p["way"] == way && p["spacing_m"].get<double>() == size) return p;
@@ -188,6 +153,53 @@ void organ_study(const StudyOptions& options) {
   for (double size : sizes)
     check_claim(error("nodal_nsni_vci", size, "energy_error_percent") < 3.5,
                 "nodal integration with NSNI and VCI is within 3.5 % in energy at every size");
+}
+
+}  // namespace
+
+void organ_study(const StudyOptions& options) {
+  const bool quick = options.quick;
+  const double reference_size = quick ? 0.003 : 0.0015;  // m
+  const std::vector<double> sizes = quick ? std::vector<double>{0.004} : std::vector<double>{0.004, 0.003, 0.002};
+  StudyRunner runner("organ", options, static_cast<int>(1 + ways.size() * sizes.size()));
+  const std::string meshes = runner.out_dir() + "/meshes";
+  std::filesystem::create_directories(meshes);
+  auto mesh_file = [&](double size, int order) {
+    std::ostringstream name;
+    name << meshes << "/organ_" << size * 1000 << "mm_o" << order << ".msh";
+    if (!std::filesystem::exists(name.str())) mesh_organ(name.str(), size, order);
+    return std::filesystem::absolute(name.str()).string();
+  };
+
+  // 1. The reference.
+  Scene reference_scene = organ_scene(mesh_file(reference_size, 2));
+  reference_scene.discretization.method = Method::fem;
+  reference_scene.discretization.fem.element = ElementType::tet10;
+  const RunRecord ref_run = runner.run("tet10_reference", reference_scene);
+  check_claim(ref_run.ok(), "the tet10 reference runs (" + ref_run.error + ")");
+  const Figures ref = figures(ref_run);
+
+  // 2. Each way at each size.
+  CsvTable table(runner.out_dir() + "/organ.csv",
+                 {"way", "size_m", "nodes", "top_error_percent", "end_error_percent", "energy_error_percent",
+                  "ic_residual_max", "setup_s", "solve_s", "status"});
+  Json points = Json::array();
+  for (const Way& w : ways)
+    for (double size : sizes) points.push_back(run_way(runner, table, w, size, mesh_file(size, 1), ref));
+  StudyResult result("organ", quick, quick ? std::vector<std::string>{} : std::vector<std::string>{"organ.png"});
+  for (const Json& p : points)
+    if (p["status"] == "ok")
+      result.headline(p["way"].get<std::string>() + " strain energy error at " + p["spacing_m"].dump() + " m",
+                      p["energy_error_percent"], "%");
+  result["reference"] = {{"element", "tet10"}, {"size_m", reference_size}, {"top_m", ref.top}, {"end_m", ref.end},
+                         {"strain_energy_J", ref.energy}};
+  result["points"] = points;
+  result.write(runner.out_dir());
+
+  if (!quick) plot("organ", runner.out_dir());
+
+  // 3. Claims.
+  check_organ_claims(points, sizes, quick);
 }
 
 }  // namespace kerf

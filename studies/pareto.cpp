@@ -174,7 +174,8 @@ void write_results(const StudyRunner& runner, bool quick, const std::vector<Poin
                row["error_percent"], ok ? Json("ok") : Json("error")});
     all.push_back(row);
   }
-  Json fronts = Json::object(), headline = Json::array();
+  StudyResult result("pareto", quick, {"pareto.png"});
+  Json fronts = Json::object();
   for (const std::string problem : {"hertz", "crack"}) {
     Json front = Json::array();
     for (std::size_t i : pareto_front(points, problem)) {
@@ -183,17 +184,14 @@ void write_results(const StudyRunner& runner, bool quick, const std::vector<Poin
       what << problem << " front: " << points[i].method << " at "
            << (problem == "hertz" ? "a/h = " : "h = ") << points[i].resolution << (problem == "hertz" ? "" : " m")
            << ", " << std::setprecision(3) << points[i].wall_s << " s";
-      headline.push_back({{"what", what.str()}, {"value", points[i].error_percent}, {"unit", "%"}});
+      result.headline(what.str(), points[i].error_percent, "%");
     }
     fronts[problem] = front;
   }
-  write_json(runner.out_dir() + "/pareto.json", {{"study", "pareto"},
-                                                 {"quick", quick},
-                                                 {"headline", headline},
-                                                 {"plots", {"pareto.png"}},
-                                                 {"crack_reference_opening_m", exact},
-                                                 {"fronts", fronts},
-                                                 {"points", all}});
+  result["crack_reference_opening_m"] = exact;
+  result["fronts"] = fronts;
+  result["points"] = all;
+  result.write(runner.out_dir());
 }
 
 void check_pareto_claims(const std::vector<Point>& points, bool quick) {

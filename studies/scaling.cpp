@@ -140,6 +140,36 @@ Json strong_speedups(const std::vector<Problem>& problems, const Json& points) {
   return speedups;
 }
 
+const char* const figure_columns[] = {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb",
+                                      "largest_rank_memory_after_body_mb", "linear_iterations", "probe_z_m"};
+
+/// A point's CSV row (empty cells where it failed).
+std::vector<Json> row_of(const Json& point) {
+  std::vector<Json> row{point["problem"], point["ranks"], point["threads"], point.value("dofs", Json()),
+                        point.value("wall_s", Json()), point.value("loop_s", Json())};
+  for (const Phase phase : phases) row.push_back(point.value(key_of(phase), Json()));
+  for (const char* c : figure_columns) row.push_back(point.value(c, Json()));
+  row.push_back(point["status"] == "ok" ? "ok" : "error");
+  return row;
+}
+
+void check_scaling_claims(const std::vector<Problem>& problems, const Json& points) {
+  for (const Json& p : points)
+    check_claim(p["status"] == "ok", p["problem"].get<std::string>() + " on " + p["ranks"].dump() + " ranks of " +
+                                         p["threads"].dump() + " threads ran (" + p["status"].dump() + ")");
+  for (const Problem& problem : problems) {
+    if (problem.weak) continue;  // each launch has its own mesh
+    const Json* one = one_rank_point(points, problem.label);
+    for (const Json& p : points) {
+      if (p["problem"] != problem.label) continue;
+      const double a = (*one)["probe_z_m"].get<double>(), b = p["probe_z_m"].get<double>();
+      check_claim(std::abs(a - b) <= 1e-6 * std::abs(a),
+                  problem.label + " on " + p["ranks"].dump() + " ranks: probe " + std::to_string(b) +
+                      " m against 1 rank's " + std::to_string(a) + " m (to 1e-6 relative)");
+    }
+  }
+}
+
 }  // namespace
 
 void scaling_study(const StudyOptions& options) {
@@ -168,9 +198,8 @@ void scaling_study(const StudyOptions& options) {
   // 2. Run each.
   std::vector<std::string> columns{"problem", "ranks", "threads", "dofs", "wall_s", "loop_s"};
   for (const Phase phase : phases) columns.push_back(key_of(phase));
-  for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
-                        "linear_iterations", "probe_z_m", "status"})
-    columns.push_back(c);
+  for (const char* c : figure_columns) columns.push_back(c);
+  columns.push_back("status");
   CsvTable table(runner.out_dir() + "/scaling.csv", columns);
   Json points = Json::array();
   for (const Problem& problem : problems)
@@ -181,42 +210,20 @@ void scaling_study(const StudyOptions& options) {
           problem.label + "_" + std::to_string(launch.ranks) + "x" + std::to_string(launch.threads);
       const Json point = point_of(problem, launch.ranks, launch.threads,
                                   runner.run_on_ranks(label, problem.scene(size, problem.steps), launch.ranks, launch.threads));
-      std::vector<Json> row{problem.label, launch.ranks, launch.threads, point.value("dofs", Json()),
-                            point.value("wall_s", Json()), point.value("loop_s", Json())};
-      for (const Phase phase : phases) row.push_back(point.value(key_of(phase), Json()));
-      for (const char* c : {"rank0_peak_memory_mb", "largest_rank_peak_memory_mb", "largest_rank_memory_after_body_mb",
-                            "linear_iterations", "probe_z_m"})
-        row.push_back(point.value(c, Json()));
-      row.push_back(point["status"] == "ok" ? "ok" : "error");
-      table.row(row);
+      table.row(row_of(point));
       points.push_back(point);
     }
 
   // 3. Speed-ups against one rank of one thread, written and plotted.
-  const Json speedups = strong_speedups(problems, points);
-  write_json(runner.out_dir() + "/scaling.json", {{"study", "scaling"},
-                                                   {"quick", options.quick},
-                                                   {"cores", cores},
-                                                   {"speedups", speedups},
-                                                   {"plots", {"scaling.png"}},
-                                                   {"points", points}});
+  StudyResult result("scaling", options.quick, {"scaling.png"});
+  result["cores"] = cores;
+  result["speedups"] = strong_speedups(problems, points);
+  result["points"] = points;
+  result.write(runner.out_dir());
   plot("scaling", runner.out_dir());
 
   // 4. The claims: every point ran, and every launch gives the 1-rank answer to the solver's tolerance.
-  for (const Json& p : points)
-    check_claim(p["status"] == "ok", p["problem"].get<std::string>() + " on " + p["ranks"].dump() + " ranks of " +
-                                         p["threads"].dump() + " threads ran (" + p["status"].dump() + ")");
-  for (const Problem& problem : problems) {
-    if (problem.weak) continue;  // each launch has its own mesh
-    const Json* one = one_rank_point(points, problem.label);
-    for (const Json& p : points) {
-      if (p["problem"] != problem.label) continue;
-      const double a = (*one)["probe_z_m"].get<double>(), b = p["probe_z_m"].get<double>();
-      check_claim(std::abs(a - b) <= 1e-6 * std::abs(a),
-                  problem.label + " on " + p["ranks"].dump() + " ranks: probe " + std::to_string(b) +
-                      " m against 1 rank's " + std::to_string(a) + " m (to 1e-6 relative)");
-    }
-  }
+  check_scaling_claims(problems, points);
 }
 
 }  // namespace kerf

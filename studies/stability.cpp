@@ -459,15 +459,14 @@ void stability_study(const StudyOptions& options) {
   CsvTable table(runner.out_dir() + "/stability.csv", {"part", "case", "quantity", "value", "unit"});
   Experiments x{quick, runner, table, {}, {}};
 
-  Json result = {{"study", "stability"}, {"quick", quick}};
+  StudyResult result("stability", quick, {"stability.png"});
   result["critical_step"] = critical_step(x);
   result["energy_drift"] = energy_drift(x);
   result["zero_energy_modes"] = zero_energy_modes(x);
   result["zigzag"] = zigzag_cut(x, rules);
   result["locking"] = locking(x);
-  result["headline"] = headline(result);
-  result["plots"] = {"stability.png"};
-  write_json(runner.out_dir() + "/stability.json", result);
+  result.set_headline(headline(result.json()));
+  result.write(runner.out_dir());
   plot("stability", runner.out_dir());
   for (const auto& [holds, what] : x.claims) check_claim(holds, what);
 }

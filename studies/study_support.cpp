@@ -193,7 +193,24 @@ void plot(const std::string& script, const std::string& out_dir) {
              "python3-numpy (make deps)");
 }
 
-void write_json(const std::string& path, const Json& value) { write_file_atomically(path, value.dump(2) + "\n"); }
+StudyResult::StudyResult(std::string study, bool quick, std::vector<std::string> plots)
+    : study_(std::move(study)), quick_(quick), plots_(std::move(plots)) {}
+
+void StudyResult::headline(const std::string& what, const Json& value, const std::string& unit) {
+  headline_.push_back({{"what", what}, {"value", value}, {"unit", unit}});
+}
+
+void StudyResult::set_headline(Json figures) { headline_ = std::move(figures); }
+
+Json StudyResult::json() const {
+  Json out = {{"study", study_}, {"quick", quick_}, {"headline", headline_}, {"plots", plots_}};
+  for (const auto& [key, value] : sections_.items()) out[key] = value;
+  return out;
+}
+
+void StudyResult::write(const std::string& out_dir) const {
+  write_file_atomically(out_dir + "/" + study_ + ".json", json().dump(2) + "\n");
+}
 
 void check_claim(bool holds, const std::string& claim) {
   KERF_CHECK(holds, "claim failed: ", claim);

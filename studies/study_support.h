@@ -83,8 +83,26 @@ void plot(const std::string& script, const std::string& out_dir);
 /// (share/kerf beside the program's bin/, or under the configured prefix).
 std::string study_data_path(const std::string& relative);
 
-/// Writes <out>/<study>.json atomically.
-void write_json(const std::string& path, const Json& value);
+/// <study>.json: the envelope every study writes first (study, quick,
+/// headline: {what, value, unit} figures the main job's README lists, plots),
+/// then the study's own sections in the order it sets them.
+class StudyResult {
+ public:
+  StudyResult(std::string study, bool quick, std::vector<std::string> plots);
+  void headline(const std::string& what, const Json& value, const std::string& unit);
+  /// A study that composes its headline list itself (each item what, value, unit).
+  void set_headline(Json figures);
+  Json& operator[](const std::string& section) { return sections_[section]; }
+  /// The file's content.
+  Json json() const;
+  /// Writes <out_dir>/<study>.json atomically.
+  void write(const std::string& out_dir) const;
+
+ private:
+  std::string study_;
+  bool quick_;
+  Json headline_ = Json::array(), plots_, sections_ = Json::object();
+};
 
 /// 100 (value - reference) / reference.
 double percent_off(double value, double reference);
