@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "discretization/fem/simplex_quadrature.h"
 
 namespace kerf {
 namespace {
@@ -186,26 +187,22 @@ double lattice_nodes(const Scene& scene, double spacing) {
   return nodes;
 }
 
-int points_per_cell(ElementType element) {
-  switch (element) {
-    case ElementType::tet4: return 1;
-    case ElementType::tet10: return 4;
-    case ElementType::tri3: return 1;
-    case ElementType::tri6: return 3;
-  }
-  return 1;
+/// The FEM body's stiffness points a cell (its element's quadrature).
+double points_per_cell(const ElementDescriptor& element) {
+  return static_cast<double>(simplex_quadrature(element.dimension, element.stiffness_degree).points.size());
 }
 
 /// The body's counts: nodes, points, and the node pairs a matrix row couples.
 void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const int d = scene.dimension;
   const DiscretizationOptions& disc = scene.discretization;
-  const int order = element_kind(disc.fem.element).order;
+  const ElementDescriptor& element = element_descriptor(disc.fem.element);
+  const int order = element.order;
   if (disc.method == Method::fem) {
     const MeshCounts m = mesh_counts(scene, disc.fem.size, order);
     e.mesh_cells = m.cells, e.mesh_nodes = m.nodes, e.nodes = m.nodes;
-    e.points = m.cells * points_per_cell(disc.fem.element);
-    coupled = d == 3 ? (order == 1 ? 15.0 : 27.0) : (order == 1 ? 7.0 : 14.0);
+    e.points = m.cells * points_per_cell(element);
+    coupled = element.coupled_nodes;
     e.size_key = "discretization.fem.size", e.size = disc.fem.size;
     return;
   }

@@ -40,7 +40,7 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 /// cells keeps its corners (edges straightened). Either is said in the notes.
 Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
   const ElementType element = scene.discretization.fem.element;
-  const int order = element_kind(element).order;
+  const int order = element_descriptor(element).order;
   if (scene.box) return make_mesh(scene, order, scene.discretization.fem.size, std::move(cuts));
   int file_order = order;
   Mesh mesh = mesh_from_first_rank([&] {
@@ -68,7 +68,7 @@ RankShare rank_share(const Scene& scene, const CutTimeline& cuts) {
   return remeshed ? RankShare{} : process_ranks();
 }
 
-int fem_order(const Scene& scene) { return element_kind(scene.discretization.fem.element).order; }
+int fem_order(const Scene& scene) { return element_descriptor(scene.discretization.fem.element).order; }
 
 std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
   const MeshlessOptions& options = scene.discretization.meshless;

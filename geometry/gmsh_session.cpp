@@ -28,11 +28,12 @@ void extract_gmsh_mesh(int dimension, const std::string& what, Mesh& mesh) {
                "triangle mesh in the x-y plane, or dimension: 3");
   }
   gmsh::model::mesh::getElementTypes(types, dimension);
-  const int linear_type = dimension == 3 ? 4 : 2, quadratic_type = dimension == 3 ? 11 : 9;
+  const int linear_type = element_descriptor(dimension, 1).gmsh_type;
+  const int quadratic_type = element_descriptor(dimension, 2).gmsh_type;
   bool has_linear = std::find(types.begin(), types.end(), linear_type) != types.end();
   bool has_quadratic = std::find(types.begin(), types.end(), quadratic_type) != types.end();
-  KERF_CHECK(has_linear || has_quadratic, what, ": holds no ",
-             dimension == 3 ? "tetrahedra (gmsh types 4 or 11)" : "triangles (gmsh types 2 or 9)");
+  KERF_CHECK(has_linear || has_quadratic, what, ": holds no ", dimension == 3 ? "tetrahedra" : "triangles",
+             " (gmsh types ", linear_type, " or ", quadratic_type, ")");
   KERF_CHECK(!(has_linear && has_quadratic), what, ": mixes linear and quadratic cells; expected one order");
   mesh.dimension = dimension;
   mesh.order = has_linear ? 1 : 2;

@@ -6,19 +6,29 @@
 
 namespace kerf {
 namespace {
-constexpr std::array<std::array<int, 2>, 6> tet_edges{{{0, 1}, {1, 2}, {0, 2}, {0, 3}, {2, 3}, {1, 3}}};
-constexpr std::array<std::array<int, 2>, 3> tri_edges{{{0, 1}, {1, 2}, {0, 2}}};
+
+/// Where each node of a cell goes when its corners 1 and 2 are swapped: the
+/// corners, then each mid-edge node to the edge its swapped corners make.
+std::array<int, 10> corner_swap_permutation(const ElementDescriptor& e) {
+  std::array<int, 10> to{};
+  const auto swapped = [](int corner) { return corner == 1 ? 2 : corner == 2 ? 1 : corner; };
+  const int corners = e.dimension + 1;
+  for (int a = 0; a < corners; ++a) to[a] = swapped(a);
+  if (e.order == 1) return to;
+  for (std::size_t k = 0; k < e.edges.size(); ++k) {
+    const int a = swapped(e.edges[k][0]), b = swapped(e.edges[k][1]);
+    for (std::size_t m = 0; m < e.edges.size(); ++m)
+      if ((e.edges[m][0] == a && e.edges[m][1] == b) || (e.edges[m][0] == b && e.edges[m][1] == a))
+        to[corners + k] = corners + static_cast<int>(m);
+  }
+  return to;
+}
+
 }  // namespace
 
-int Mesh::nodes_per_cell() const {
-  if (dimension == 3) return order == 1 ? 4 : 10;
-  return order == 1 ? 3 : 6;
-}
+int Mesh::nodes_per_cell() const { return element_descriptor(dimension, order).nodes; }
 
-std::span<const std::array<int, 2>> mid_edge_corners(int dimension) {
-  if (dimension == 3) return tet_edges;
-  return tri_edges;
-}
+std::span<const std::array<int, 2>> mid_edge_corners(int dimension) { return element_descriptor(dimension, 1).edges; }
 
 double cell_measure(const Mesh& mesh, Index c) {
   auto n = mesh.cell(c);
@@ -31,19 +41,14 @@ double cell_measure(const Mesh& mesh, Index c) {
 Index orient_cells(Mesh& mesh) {
   Index flipped = 0;
   const int npc = mesh.nodes_per_cell();
+  // Swap corners 1 and 2; the mid-edge nodes on edges touching them follow.
+  const std::array<int, 10> to = corner_swap_permutation(element_descriptor(mesh.dimension, mesh.order));
+  std::array<Index, 10> before{};
   for (Index c = 0; c < mesh.cell_count(); ++c) {
     if (cell_measure(mesh, c) >= 0.0) continue;
     Index* n = mesh.cells.data() + static_cast<std::size_t>(c) * npc;
-    // Swap corners 1 and 2; the mid-edge nodes on edges touching them follow.
-    std::swap(n[1], n[2]);
-    if (mesh.order == 2) {
-      if (mesh.dimension == 3) {
-        std::swap(n[4], n[6]);  // (0,1) <-> (0,2)
-        std::swap(n[8], n[9]);  // (2,3) <-> (1,3)
-      } else {
-        std::swap(n[3], n[5]);  // (0,1) <-> (0,2)
-      }
-    }
+    std::copy(n, n + npc, before.begin());
+    for (int a = 0; a < npc; ++a) n[to[a]] = before[a];
     ++flipped;
   }
   return flipped;

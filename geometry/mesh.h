@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "core/element_types.h"
 #include "core/types.h"
 
 namespace kerf {

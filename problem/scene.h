@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/element_types.h"
 #include "core/types.h"
 #include "problem/selection.h"
 #include "problem/source_location.h"
@@ -18,21 +19,6 @@ namespace kerf {
 // Material::user_model; it has no EnumNames spelling.
 enum class MaterialModel { linear, corotational, stvk, neohookean, neohookean_uncoupled, user };
 enum class Method { fem, efg, nodal };
-enum class ElementType { tet4, tet10, tri3, tri6 };
-/// What the scene side needs of an element type: the dimension it fits, its polynomial order.
-struct ElementKind {
-  int dimension;
-  int order;
-};
-constexpr ElementKind element_kind(ElementType e) {
-  switch (e) {
-    case ElementType::tet4: return {3, 1};
-    case ElementType::tet10: return {3, 2};
-    case ElementType::tri3: return {2, 1};
-    case ElementType::tri6: return {2, 2};
-  }
-  return {0, 0};
-}
 /// Where a linear simplex holds its law's bulk term: in each cell (locks as
 /// nu nears 0.5), or averaged over the nodes (averaged nodal pressure).
 enum class FemVolumetric { element, averaged_nodal };
@@ -266,7 +252,6 @@ struct EnumNames;
   }
 KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean", "neohookean_uncoupled");
 KERF_ENUM_NAMES(Method, "fem", "efg", "nodal");
-KERF_ENUM_NAMES(ElementType, "tet4", "tet10", "tri3", "tri6");
 KERF_ENUM_NAMES(FemVolumetric, "element", "averaged_nodal");
 KERF_ENUM_NAMES(NodePlacement, "lattice", "mesh");
 KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
@@ -287,6 +272,15 @@ KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
 KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
+/// Elements' spellings are their table's (core/element_types.h).
+template <>
+struct EnumNames<ElementType> {
+  static constexpr auto names = [] {
+    std::array<const char*, element_types.size()> spelled{};
+    for (std::size_t i = 0; i < element_types.size(); ++i) spelled[i] = element_types[i].name;
+    return spelled;
+  }();
+};
 
 template <class E>
 const char* to_string(E value) {

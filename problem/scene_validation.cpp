@@ -105,9 +105,9 @@ void validate_material(const Refusal& r, const Material& m) {
 void validate_discretization(const Refusal& r, const DiscretizationOptions& d, int dim) {
   std::string fitting;  // the elements of this dimension
   for (std::size_t e = 0; e < EnumNames<ElementType>::names.size(); ++e)
-    if (element_kind(static_cast<ElementType>(e)).dimension == dim)
+    if (element_descriptor(static_cast<ElementType>(e)).dimension == dim)
       fitting += (fitting.empty() ? "" : " | ") + std::string(EnumNames<ElementType>::names[e]);
-  r.require(element_kind(d.fem.element).dimension == dim, "discretization.fem.element",
+  r.require(element_descriptor(d.fem.element).dimension == dim, "discretization.fem.element",
             "value '" + std::string(to_string(d.fem.element)) + "' does not fit dimension " + std::to_string(dim) +
                 "; expected " + fitting);
   r.in_range(d.fem.size > 0.0, "discretization.fem.size", d.fem.size, "size > 0 (m)");
@@ -302,7 +302,7 @@ void validate_averaged_nodal(const Refusal& r, const Scene& scene) {
   r.require(d.method == Method::fem, key,
             "value 'averaged_nodal' with method '" + std::string(to_string(d.method)) +
                 "': it is a finite-element cell; expected method: fem, or volumetric: element");
-  r.require(element_kind(d.fem.element).order == 1 || !scene.mesh_file.empty(), key,
+  r.require(element_descriptor(d.fem.element).order == 1 || !scene.mesh_file.empty(), key,
             "value 'averaged_nodal' with element '" + std::string(to_string(d.fem.element)) +
                 "': it averages the bulk term of linear cells (quadratic ones barely lock); expected element: tet4 "
                 "or tri3, or volumetric: element");

@@ -27,10 +27,6 @@ void dispatch_cell(int dim, int order, Body&& body) {
   else body.template operator()<2, 6>();
 }
 
-std::uint8_t vtk_cell_type(int dim, int order) {
-  if (dim == 3) return order == 1 ? 10 : 24;  // VTK_TETRA, VTK_QUADRATIC_TETRA
-  return order == 1 ? 5 : 22;                 // VTK_TRIANGLE, VTK_QUADRATIC_TRIANGLE
-}
 
 /// Per-element results of one quadrature pass.
 template <int Dim, int Npc>
@@ -93,7 +89,7 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
   domain_size_ = (box[1] - box[0]).norm();
   npc_ = mesh_.nodes_per_cell();
   mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
-  const QuadratureRule rule = simplex_quadrature(dim, 2 * (mesh_.order - 1));
+  const QuadratureRule rule = simplex_quadrature(dim, element_descriptor(dim, mesh_.order).stiffness_degree);
   integrate_cells(rule, previous && !front_ ? previous : nullptr);
   if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
   build_loads(scene);
@@ -779,6 +775,7 @@ std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const
 
 void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
   const int dim = mesh_.dimension;
+  const ElementDescriptor& element = element_descriptor(dim, mesh_.order);
   const Index C = mesh_.cell_count();
   out = BodySnapshot{};
   out.points = mesh_.nodes;
@@ -796,13 +793,9 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
       mises.values.push_back(von_mises(sigma[c]));
     };
     if (!split_ || split_->whole(c)) {
-      for (int a = 0; a < npc_; ++a) {
-        int local = a;
-        if (npc_ == 10 && (a == 8 || a == 9)) local = 17 - a;  // gmsh (2,3),(1,3) -> VTK (1,3),(2,3)
-        out.connectivity.push_back(n[local]);
-      }
+      for (int local : element.vtk_nodes) out.connectivity.push_back(n[local]);
       out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
-      out.cell_types.push_back(vtk_cell_type(dim, mesh_.order));
+      out.cell_types.push_back(static_cast<std::uint8_t>(element.vtk_type));
       cell_values();
       continue;
     }
@@ -821,7 +814,7 @@ void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
       for (int i = 0; i < 3; ++i) displacement.values.push_back(w[i]);
       if ((k + 1) % (dim + 1)) continue;
       out.offsets.push_back(static_cast<Index>(out.connectivity.size()));
-      out.cell_types.push_back(vtk_cell_type(dim, 1));
+      out.cell_types.push_back(static_cast<std::uint8_t>(element_descriptor(dim, 1).vtk_type));
       cell_values();
     }
   }
