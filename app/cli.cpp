@@ -81,7 +81,8 @@ int study_command(const Arguments& a) {
 /// Under mpirun only PETSc's solvers share a linear solve between ranks: a
 /// serial one is refused before any work (explicit runs solve nothing).
 void refuse_serial_solver_on_ranks(const Scene& scene, int ranks) {
-  if (ranks == 1 || !scene.solve.solves_linear_systems() || scene.solve.linear_solver == LinearSolverKind::petsc) return;
+  if (ranks == 1 || !scene.solve.solves_linear_systems() || linear_backend(scene.solve.linear_solver).spans_ranks)
+    return;
   throw Error(scene.locate("solve.linear_solver").describe() + ": " + to_string(scene.solve.linear_solver) +
               " cannot run on " + std::to_string(ranks) +
               " MPI ranks; expected petsc (PETSc's KSP shares the solve between ranks)");

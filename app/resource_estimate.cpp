@@ -295,8 +295,7 @@ ResourceEstimate estimate_resources(const Scene& scene) {
   e.dofs = d * e.nodes;
   if (scene.solve.solves_linear_systems()) {
     e.nonzeros = e.dofs * d * coupled;
-    const bool direct = scene.solve.linear_solver == LinearSolverKind::cholmod ||
-                        scene.solve.linear_solver == LinearSolverKind::ldlt;
+    const bool direct = linear_backend(scene.solve.linear_solver).direct;
     const double fill = d == 3 ? factor_fill_3d * std::cbrt(e.dofs) : factor_fill_2d * std::log2(e.dofs + 2.0);
     if (direct) e.factor_nonzeros = e.nonzeros * std::max(1.0, fill);
   }

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/element_types.h"
+#include "core/linear_backends.h"
 #include "core/types.h"
 #include "problem/selection.h"
 #include "problem/source_location.h"
@@ -39,7 +40,6 @@ enum class NodalStabilization { none, hourglass, nsni };
 enum class CutCells { automatic, whole, split };
 enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
-enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
 enum class MassKind { lumped, consistent };
 enum class TangentKind { exact, definite, automatic };
 enum class Enrichment { grid, multiplicative, single, visibility, diffraction };
@@ -263,7 +263,6 @@ KERF_ENUM_NAMES(NodalStabilization, "none", "hourglass", "nsni");
 KERF_ENUM_NAMES(CutCells, "auto", "whole", "split");
 KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
-KERF_ENUM_NAMES(LinearSolverKind, "cholmod", "petsc", "cg", "ldlt");
 KERF_ENUM_NAMES(MassKind, "lumped", "consistent");
 KERF_ENUM_NAMES(TangentKind, "exact", "definite", "auto");
 KERF_ENUM_NAMES(Enrichment, "grid", "multiplicative", "single", "visibility", "diffraction");
@@ -272,6 +271,15 @@ KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
 KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
+/// Linear backends' spellings are their table's (core/linear_backends.h).
+template <>
+struct EnumNames<LinearSolverKind> {
+  static constexpr auto names = [] {
+    std::array<const char*, linear_backends.size()> spelled{};
+    for (std::size_t i = 0; i < linear_backends.size(); ++i) spelled[i] = linear_backends[i].name;
+    return spelled;
+  }();
+};
 /// Elements' spellings are their table's (core/element_types.h).
 template <>
 struct EnumNames<ElementType> {

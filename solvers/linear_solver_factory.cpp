@@ -7,11 +7,11 @@
 namespace kerf {
 
 std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& options, RunReport& report) {
+  if (*linear_backend(options.kind).stage) report.add_stage(linear_backend(options.kind).stage);
   switch (options.kind) {
     case LinearSolverKind::cholmod:
       return make_cholmod_solver();
     case LinearSolverKind::petsc:
-      report.add_stage("petsc");
       return make_petsc_solver(options.petsc_options, options.relative_tolerance);
     case LinearSolverKind::cg:
       return make_eigen_cg_solver(options.relative_tolerance);

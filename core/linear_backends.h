@@ -1,0 +1,40 @@
+#pragma once
+// Every linear solver backend, described once: its scene spelling
+// (solve.linear_solver), whether it factors the matrix (the resource estimate
+// counts the factor's fill), whether one solve spans MPI ranks (the command
+// line refuses the others under mpirun) and the stage it records in the
+// summary. A new backend is a row here and a case in
+// solvers/linear_solver_factory.cpp beside its own file.
+#include <array>
+
+namespace kerf {
+
+enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
+
+struct LinearBackend {
+  LinearSolverKind kind;
+  const char* name;
+  bool direct;       // factors the matrix: memory for the factor's fill
+  bool spans_ranks;  // one solve shared by every MPI rank
+  const char* stage;  // the summary's stage it starts ("" for none)
+};
+
+inline constexpr std::array<LinearBackend, 4> linear_backends{{
+    {LinearSolverKind::cholmod, "cholmod", true, false, ""},
+    {LinearSolverKind::petsc, "petsc", false, true, "petsc"},
+    {LinearSolverKind::cg, "cg", false, false, ""},
+    {LinearSolverKind::ldlt, "ldlt", true, false, ""},
+}};
+
+constexpr bool backends_in_enum_order() {
+  for (std::size_t i = 0; i < linear_backends.size(); ++i)
+    if (static_cast<std::size_t>(linear_backends[i].kind) != i) return false;
+  return true;
+}
+static_assert(backends_in_enum_order(), "linear_backends: one row per LinearSolverKind, in its order");
+
+constexpr const LinearBackend& linear_backend(LinearSolverKind kind) {
+  return linear_backends[static_cast<std::size_t>(kind)];
+}
+
+}  // namespace kerf
