@@ -2,6 +2,7 @@
 // The parsed, validated scene: every key of SCENES.md with its default filled in.
 // Units are SI (m, kg, s, Pa, N). In 2D (plane strain) vectors keep z = 0.
 #include <array>
+#include <tuple>
 #include <map>
 #include <algorithm>
 #include <optional>
@@ -271,23 +272,21 @@ KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
 KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
-/// Linear backends' spellings are their table's (core/linear_backends.h).
+/// The spellings of a kind described by a table (core/element_types.h,
+/// core/linear_backends.h): each row's name, in the enum's order.
+template <class Table>
+constexpr auto names_of(const Table& rows) {
+  std::array<const char*, std::tuple_size_v<Table>> spelled{};
+  for (std::size_t i = 0; i < rows.size(); ++i) spelled[i] = rows[i].name;
+  return spelled;
+}
 template <>
 struct EnumNames<LinearSolverKind> {
-  static constexpr auto names = [] {
-    std::array<const char*, linear_backends.size()> spelled{};
-    for (std::size_t i = 0; i < linear_backends.size(); ++i) spelled[i] = linear_backends[i].name;
-    return spelled;
-  }();
+  static constexpr auto names = names_of(linear_backends);
 };
-/// Elements' spellings are their table's (core/element_types.h).
 template <>
 struct EnumNames<ElementType> {
-  static constexpr auto names = [] {
-    std::array<const char*, element_types.size()> spelled{};
-    for (std::size_t i = 0; i < element_types.size(); ++i) spelled[i] = element_types[i].name;
-    return spelled;
-  }();
+  static constexpr auto names = names_of(element_types);
 };
 
 template <class E>

@@ -59,17 +59,6 @@ namespace {
 constexpr double young = 3.0e4, density = 1000.0;
 constexpr double spacing = 0.0025;  // m: nodes and element size of the cantilever
 
-/// Central differences, `steps` of `dt`, a dt above the critical step allowed (the bisection looks for it).
-SolveOptions explicit_solve(double dt, int steps) {
-  SolveOptions solve;
-  solve.analysis = Analysis::dynamic;
-  solve.integrator = Integrator::central_difference;
-  solve.dt = dt;
-  solve.duration = dt * steps;
-  solve.allow_unstable_dt = true;
-  return solve;
-}
-
 /// One variant of a method: what it needs under `discretization`.
 struct Variant {
   std::string label;
@@ -118,7 +107,7 @@ Scene cantilever(const Variant& m, MaterialModel model, double poisson, double h
 Scene sagging_cantilever(const Variant& m, MaterialModel model, double dt, int steps) {
   Scene scene = cantilever(m, model, 0.3, spacing);
   scene.gravity = Vec3(0, 0, -9.81);
-  scene.solve = explicit_solve(dt, steps);
+  scene.solve = study_scene::explicit_unstable_steps(dt, steps);
   scene.output.probes = {study_scene::energy_probe("energy")};
   return scene;
 }
@@ -199,7 +188,7 @@ Scene zigzag_scene(const Rule& rule, bool growing, double dt, int steps) {
   pulled.traction = Vec3(0, 1000, 0);
   scene.boundary = {held(1, -0.02, {true, true, false}), pulled};
   scene.cuts = {cut};
-  scene.solve = explicit_solve(dt, steps);
+  scene.solve = study_scene::explicit_unstable_steps(dt, steps);
   scene.output.probes = {energy_probe("energy")};
   return scene;
 }

@@ -76,6 +76,14 @@ Probe contact_probe(const std::string& name, int contact, ProbeField field) {
   return p;
 }
 
+SolveOptions explicit_unstable_steps(double dt, int steps) {
+  SolveOptions solve = implicit_steps(dt, steps);
+  solve.integrator = Integrator::central_difference;
+  solve.newton = NewtonOptions{};
+  solve.allow_unstable_dt = true;
+  return solve;
+}
+
 SolveOptions implicit_steps(double dt, int steps) {
   SolveOptions solve;
   solve.analysis = Analysis::dynamic;

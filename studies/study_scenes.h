@@ -33,6 +33,9 @@ Probe energy_probe(const std::string& name);
 /// indentation or contact_force of the contact item `contact`.
 Probe contact_probe(const std::string& name, int contact, ProbeField field);
 
+/// Central differences, `steps` of `dt`, a dt above the critical step allowed (a stability probe looks for it).
+SolveOptions explicit_unstable_steps(double dt, int steps);
+
 /// Implicit Euler of `steps` steps of dt (s), one linearised solve a step (as SOFA does).
 SolveOptions implicit_steps(double dt, int steps);
 
