@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
+#include "problem/body_plan.h"
 
 namespace kerf {
 namespace {
@@ -192,39 +193,31 @@ double points_per_cell(const ElementDescriptor& element) {
   return static_cast<double>(simplex_quadrature(element.dimension, element.stiffness_degree).points.size());
 }
 
-/// The body's counts: nodes, points, and the node pairs a matrix row couples.
+/// The body's counts: nodes, points, and the node pairs a matrix row couples,
+/// of the body the factory builds (body_plan.h).
 void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const int d = scene.dimension;
-  const DiscretizationOptions& disc = scene.discretization;
-  const ElementDescriptor& element = element_descriptor(disc.fem.element);
-  const int order = element.order;
-  if (disc.method == Method::fem) {
-    const MeshCounts m = mesh_counts(scene, disc.fem.size, order);
-    e.mesh_cells = m.cells, e.mesh_nodes = m.nodes, e.nodes = m.nodes;
-    e.points = m.cells * points_per_cell(element);
+  const BodyPlan plan = body_plan(scene);
+  const ElementDescriptor& element = element_descriptor(scene.discretization.fem.element);
+  MeshCounts mesh;
+  if (plan.mesh.made) mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
+  e.mesh_cells = mesh.cells, e.mesh_nodes = mesh.nodes;
+  e.size_key = plan.size_key, e.size = plan.size;
+  if (!plan.method->meshless) {
+    e.nodes = mesh.nodes;
+    e.points = mesh.cells * points_per_cell(element);
     coupled = element.coupled_nodes;
-    e.size_key = "discretization.fem.size", e.size = disc.fem.size;
     return;
   }
-  const MeshlessOptions& o = disc.meshless;
-  const bool on_mesh_nodes = o.nodes == NodePlacement::mesh;
-  const bool loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
-                                 [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
-  MeshCounts background;
-  if (on_mesh_nodes)
-    background = mesh_counts(scene, disc.fem.size, order);
-  else if (disc.method == Method::efg || loads || !scene.contact.empty())
-    background = mesh_counts(scene, o.spacing, 1);
-  e.mesh_cells = background.cells, e.mesh_nodes = background.nodes;
-  e.nodes = on_mesh_nodes ? background.nodes : lattice_nodes(scene, o.spacing);
-  e.points = disc.method == Method::efg ? background.cells * std::pow(o.quadrature_order, d) : e.nodes;
+  const MeshlessOptions& o = scene.discretization.meshless;
+  e.nodes = plan.nodes_on_mesh ? mesh.nodes : lattice_nodes(scene, o.spacing);
+  e.points = plan.method->integration == Integration::background_cells ? mesh.cells * std::pow(o.quadrature_order, d)
+                                                                        : e.nodes;
   // Nodes in a support, three quarters of a full ball's (the boundary's share, as measured).
   const double ball =
       d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;
   e.neighbors = 0.75 * ball;
   coupled = std::pow(2.0, d) * e.neighbors;  // nodes sharing a point: within two supports
-  e.size_key = on_mesh_nodes ? "discretization.fem.size" : "discretization.meshless.spacing";
-  e.size = on_mesh_nodes ? disc.fem.size : o.spacing;
 }
 
 /// When one refine box holds most of the cells, its size is what to change:
@@ -247,7 +240,7 @@ void blame_the_finest_share(const Scene& scene, ResourceEstimate& e) {
 
 /// The Enrichment Grids: each cut's bounding box, padded by a support, at its grid spacing.
 double grid_points(const Scene& scene) {
-  if (scene.discretization.method == Method::fem) return 0.0;
+  if (!method_descriptor(scene.discretization.method).meshless) return 0.0;
   const double pad = scene.discretization.meshless.support * scene.discretization.meshless.spacing;
   double points = 0.0;
   for (const Cut& cut : scene.cuts) {

@@ -1,8 +1,8 @@
 #include "discretization/body_factory.h"
 
-#include <algorithm>
 
 #include "core/check.h"
+#include "problem/body_plan.h"
 #include "discretization/fem/fem_body.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
@@ -40,8 +40,9 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 /// cells keeps its corners (edges straightened). Either is said in the notes.
 Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
   const ElementType element = scene.discretization.fem.element;
-  const int order = element_descriptor(element).order;
-  if (scene.box) return make_mesh(scene, order, scene.discretization.fem.size, std::move(cuts));
+  const MeshPlan plan = body_plan(scene).mesh;
+  const int order = plan.order;
+  if (scene.box) return make_mesh(scene, order, plan.size, std::move(cuts));
   int file_order = order;
   Mesh mesh = mesh_from_first_rank([&] {
     return read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
@@ -61,36 +62,25 @@ Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& re
 
 /// Under MPI, a body computes only its rank's cells, nodes or Gauss points
 /// (contact splits its points too; meshless cuts change shape functions, not
-/// the rows). Not a FEM body whose cut grows: each growth meshes it anew, so
+/// the rows). Not a body that a growing cut rebuilds (FEM meshes it anew):
 /// it runs whole on every rank, only the linear solve shared.
 RankShare rank_share(const Scene& scene, const CutTimeline& cuts) {
-  const bool remeshed = scene.discretization.method == Method::fem && cuts.grows();
-  return remeshed ? RankShare{} : process_ranks();
+  const bool rebuilt = method_descriptor(scene.discretization.method).rebuilt_as_cut_grows && cuts.grows();
+  return rebuilt ? RankShare{} : process_ranks();
 }
 
-int fem_order(const Scene& scene) { return element_descriptor(scene.discretization.fem.element).order; }
-
 std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
-  const MeshlessOptions& options = scene.discretization.meshless;
-  const bool on_mesh_nodes = options.nodes == NodePlacement::mesh || !scene.box;
-  const bool boundary_loads = std::any_of(scene.boundary.begin(), scene.boundary.end(),
-                                          [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
-  // A background mesh: EFG's integration cells, where boundary loads and
-  // contact are integrated, the nodes themselves with `nodes: mesh`, the
-  // extent of a non-box domain.
+  const BodyPlan plan = body_plan(scene);
   std::optional<Mesh> background;
-  if (on_mesh_nodes)
-    background = make_mesh(scene, fem_order(scene), scene.discretization.fem.size);
-  else if (scene.discretization.method == Method::efg || boundary_loads || !scene.contact.empty())
-    background = make_mesh(scene, 1, options.spacing);
-  if (background) {
-    background = corner_mesh(*background);
+  if (plan.mesh.made) {
+    background = corner_mesh(make_mesh(scene, plan.mesh.order, plan.mesh.size));
     order_for_locality(*background);
     report.add_stage("mesh");
   }
-  NodeSet nodes = on_mesh_nodes ? mesh_nodes(*background, options.support)
-                                : lattice_nodes(scene.dimension, *scene.box, options.spacing,
-                                                scene.discretization.refine, options.support);
+  const MeshlessOptions& options = scene.discretization.meshless;
+  NodeSet nodes = plan.nodes_on_mesh ? mesh_nodes(*background, options.support)
+                                     : lattice_nodes(scene.dimension, *scene.box, options.spacing,
+                                                     scene.discretization.refine, options.support);
   report.add_stage("nodes");
   const RankShare share = rank_share(scene, *cuts);
   MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
@@ -107,7 +97,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
 
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
   ScopedTimer timer(report.phases, Phase::setup);
-  if (scene.discretization.method != Method::fem) return make_meshless_body(scene, std::move(cuts), report);
+  if (method_descriptor(scene.discretization.method).meshless) return make_meshless_body(scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);

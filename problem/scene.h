@@ -12,6 +12,7 @@
 #include "core/element_types.h"
 #include "core/linear_backends.h"
 #include "core/types.h"
+#include "problem/methods.h"
 #include "problem/selection.h"
 #include "problem/source_location.h"
 
@@ -20,14 +21,12 @@ namespace kerf {
 // `user`: a law registered from outside kerf (user_material.h), named by
 // Material::user_model; it has no EnumNames spelling.
 enum class MaterialModel { linear, corotational, stvk, neohookean, neohookean_uncoupled, user };
-enum class Method { fem, efg, nodal };
 /// Where a linear simplex holds its law's bulk term: in each cell (locks as
 /// nu nears 0.5), or averaged over the nodes (averaged nodal pressure).
 enum class FemVolumetric { element, averaged_nodal };
 enum class NodePlacement { lattice, mesh };
 enum class MlsBasis { linear, quadratic };
 enum class WeightFunction { quartic };
-enum class EssentialMethod { penalty, nitsche, parameters };
 enum class NodalGradient { direct, smoothed };
 /// The order of the variationally consistent correction of nodal integration's test gradients.
 enum class VciOrder { none, linear };
@@ -110,11 +109,9 @@ struct MeshlessOptions {
   std::optional<double> nitsche_safety;
 };
 
-/// fix/displacement for a meshless method: EFG weakly by Nitsche; nodal
-/// integration on the nodal parameters, the paper's way (Nitsche's form can
-/// be indefinite there: nodal integration holds its low-energy modes weakly).
+/// fix/displacement for a meshless method: as the scene says, else the method's default (methods.h).
 inline EssentialMethod essential_method(const MeshlessOptions& options, Method method) {
-  return options.essential.value_or(method == Method::efg ? EssentialMethod::nitsche : EssentialMethod::parameters);
+  return options.essential.value_or(method_descriptor(method).essential);
 }
 
 /// The default safety of Nitsche's alpha over its estimate (the largest
@@ -252,7 +249,6 @@ struct EnumNames;
     static constexpr auto names = std::to_array<const char*>({__VA_ARGS__}); \
   }
 KERF_ENUM_NAMES(MaterialModel, "linear", "corotational", "stvk", "neohookean", "neohookean_uncoupled");
-KERF_ENUM_NAMES(Method, "fem", "efg", "nodal");
 KERF_ENUM_NAMES(FemVolumetric, "element", "averaged_nodal");
 KERF_ENUM_NAMES(NodePlacement, "lattice", "mesh");
 KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
@@ -272,7 +268,7 @@ KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
 KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
-/// The spellings of a kind described by a table (core/element_types.h,
+/// The spellings of a kind described by a table (problem/methods.h, core/element_types.h,
 /// core/linear_backends.h): each row's name, in the enum's order.
 template <class Table>
 constexpr auto names_of(const Table& rows) {
@@ -280,6 +276,10 @@ constexpr auto names_of(const Table& rows) {
   for (std::size_t i = 0; i < rows.size(); ++i) spelled[i] = rows[i].name;
   return spelled;
 }
+template <>
+struct EnumNames<Method> {
+  static constexpr auto names = names_of(methods);
+};
 template <>
 struct EnumNames<LinearSolverKind> {
   static constexpr auto names = names_of(linear_backends);

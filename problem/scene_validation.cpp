@@ -125,7 +125,7 @@ void validate_discretization(const Refusal& r, const DiscretizationOptions& d, i
   if (m.nitsche_safety)
     r.in_range(*m.nitsche_safety >= 1.0 && *m.nitsche_safety <= 1e6, "discretization.meshless.nitsche_safety",
                *m.nitsche_safety, "1 <= nitsche_safety <= 1e6 (alpha over its local estimate)");
-  if (m.nitsche_safety && d.method != Method::fem)
+  if (m.nitsche_safety && method_descriptor(d.method).meshless)
     r.require(essential_method(m, d.method) == EssentialMethod::nitsche, "discretization.meshless.nitsche_safety",
               "is given but discretization.meshless.essential is '" +
                   std::string(to_string(essential_method(m, d.method))) + "'; expected essential: nitsche");
@@ -214,14 +214,15 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
   r.in_range(cut.grid_spacing > 0.0, key + ".grid.spacing", cut.grid_spacing, "spacing > 0 (m)");
   // What is not built yet.
   const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
-  r.require(s.contact.empty() || !grows || s.discretization.method != Method::fem, key + ".times",
+  const MethodDescriptor& method = method_descriptor(s.discretization.method);
+  r.require(s.contact.empty() || !grows || !method.rebuilt_as_cut_grows, key + ".times",
             "contact with a growing cut in fem is not built yet (each growth meshes the body anew, and the spheres' "
             "state is not carried onto it); expected discretization.method efg or nodal, every vertex at t = 0, or "
             "no contact");
-  r.require(s.discretization.method != Method::fem || cut.fem != FemCut::remesh || s.box, key + ".fem",
+  r.require(method.meshless || cut.fem != FemCut::remesh || s.box, key + ".fem",
             "value remesh: FEM remeshes around a cut only in a box domain (domain.mesh is read as it is); expected "
             "fem: split (the cells the cut separates split in two, on any mesh), fem: remove, or domain.box");
-  r.require(s.contact.empty() || s.discretization.method != Method::fem || cut.fem != FemCut::split, key + ".fem",
+  r.require(s.contact.empty() || method.meshless || cut.fem != FemCut::split, key + ".fem",
             "value split: contact on a body split by a cut is not built yet (the copies' cut faces are not "
             "sampled); expected fem: remesh or remove, or no contact");
   // Measured: 14-30% off on the zigzag crack (results/crack_opening.md): the
@@ -299,7 +300,7 @@ void validate_averaged_nodal(const Refusal& r, const Scene& scene) {
   const DiscretizationOptions& d = scene.discretization;
   if (d.fem.volumetric != FemVolumetric::averaged_nodal) return;
   const std::string key = "discretization.fem.volumetric";
-  r.require(d.method == Method::fem, key,
+  r.require(!method_descriptor(d.method).meshless, key,
             "value 'averaged_nodal' with method '" + std::string(to_string(d.method)) +
                 "': it is a finite-element cell; expected method: fem, or volumetric: element");
   r.require(element_descriptor(d.fem.element).order == 1 || !scene.mesh_file.empty(), key,

@@ -4,6 +4,7 @@
 // is refused with the key, the estimate and the limit, and --force runs it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -58,6 +59,10 @@ TEST_P(ResourceEstimate, MatchesTheRunsCountsAndPeakMemory) {
   const Json& counts = ran.summary["counts"];
   const double nodes = estimate["nodes"], actual_nodes = counts["nodes"];
   EXPECT_NEAR(nodes / actual_nodes, 1.0, 0.35) << nodes << " estimated, " << actual_nodes << " counted";
+  // The estimate counts the body the factory builds (body_plan.h): a mesh exactly when the run made one.
+  const Json& stages = ran.summary["stages"];
+  const bool meshed = std::find(stages.begin(), stages.end(), "mesh") != stages.end();
+  EXPECT_EQ(static_cast<double>(estimate["mesh_cells"]) > 0.0, meshed) << stages.dump();
   const std::string method = ran.summary["scene"]["discretization"]["method"];
   if (method != "nodal") {
     const double points_per_element = method == "efg" ? static_cast<double>(estimate["points"]) /
