@@ -1,5 +1,5 @@
 # `cmake --install` (and `make install`): the `kerf` command, the libraries,
-# the public headers, the example scenes and study scripts, and a CMake
+# the public headers (cmake/public_headers.cmake), the example scenes and study scripts, and a CMake
 # package, so that another project's `find_package(kerf)` gets namespaced
 # targets (kerf::cli, kerf::app, kerf::problem, ...) that carry their own
 # dependencies. CPack turns the same install into a .deb (`make deb`).
@@ -21,9 +21,12 @@ install(TARGETS kerf ${kerf_exported_libraries} EXPORT kerfTargets
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR})
 install(EXPORT kerfTargets NAMESPACE kerf:: DESTINATION ${CMAKE_INSTALL_LIBDIR}/cmake/kerf)
 
-# Headers keep the tree's layout ("problem/material.h"), under include/kerf.
-foreach(folder core problem geometry discretization solvers output app studies)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder} DESTINATION ${kerf_header_dir} FILES_MATCHING PATTERN "*.h")
+# The public headers and what they include (cmake/public_headers.cmake) keep
+# the tree's layout ("problem/material.h"), under include/kerf.
+include(${CMAKE_CURRENT_LIST_DIR}/public_headers.cmake)
+foreach(header IN LISTS kerf_installed_headers)
+  get_filename_component(folder ${header} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${kerf_header_dir}/${folder})
 endforeach()
 install(FILES ${CMAKE_BINARY_DIR}/generated/kerf/version.h DESTINATION ${kerf_header_dir}/kerf)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Crack-opening errors of every method on the straight and the zigzag crack.
 
-Runs build/app/kerf on scenes/crack_plate_2d.yaml and crack_kinked_2d.yaml:
+Runs build/cli/kerf on scenes/crack_plate_2d.yaml and crack_kinked_2d.yaml:
 the meshless rules (grid exact and interpolated, multiplicative, visibility,
 diffraction; nodal with the MLS gradient at the nodes and smoothed, and efg)
 at five node spacings, `fem: remesh` and
@@ -20,7 +20,7 @@ import sys
 import tempfile
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-KERF = os.environ.get("KERF", os.path.join(ROOT, "build", "app", "kerf"))
+KERF = os.environ.get("KERF", os.path.join(ROOT, "build", "cli", "kerf"))
 # The lattice rounds the spacing to fit the box: 1, 0.745 and 0.4 mm put no
 # node on either crack; 0.586 and 0.5 mm (138 and 162 intervals over 8.1 cm)
 # put nodes on y = 0, on both cracks' lines (see docs/scenes.md, cuts).

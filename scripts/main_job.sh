@@ -5,7 +5,7 @@
 set -euo pipefail
 build=${1:-build}
 cd "$(dirname "$0")/.."
-kerf="$build/app/kerf"
+kerf="$build/cli/kerf"
 out=results/main_job
 mkdir -p "$out/scenes"
 for scene in scenes/*.yaml; do

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "app/cli.h"
+#include "cli/command_line.h"
 #include "core/denormals.h"
 #include "core/thread_policy.h"
 

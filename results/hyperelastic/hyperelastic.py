@@ -61,7 +61,7 @@ def kerf(text, keys, folder):
     os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, "scene.yaml")
     open(path, "w").write(text)
-    command = [f"{build}/app/kerf", "run", path, "--out", os.path.join(folder, "out"), "--quiet"]
+    command = [f"{build}/cli/kerf", "run", path, "--out", os.path.join(folder, "out"), "--quiet"]
     for k in keys:
         command += ["--set", k]
     subprocess.run(command, stderr=subprocess.DEVNULL)

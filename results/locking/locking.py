@@ -20,7 +20,7 @@ methods = [("tet4", ["discretization.fem.element=tet4"]), ("tet10", ["discretiza
 
 def tip(keys):
     with tempfile.TemporaryDirectory() as out:
-        command = [f"{build}/app/kerf", "run", f"{here}/../nonlinear/soft_block.yaml", "--out", out, "--quiet",
+        command = [f"{build}/cli/kerf", "run", f"{here}/../nonlinear/soft_block.yaml", "--out", out, "--quiet",
                    "--set", "material.model=linear"]
         for k in keys:
             command += ["--set", k]

@@ -18,7 +18,7 @@ print("method,analysis,status,nodes,tip_z_m,increments_taken,cutbacks,newton_ite
       "converged_by_step,solve_s,error")
 for name, analysis, keys in runs:
     with tempfile.TemporaryDirectory() as out:
-        command = [f"{build}/app/kerf", "run", f"{here}/soft_block.yaml", "--out", out, "--quiet"]
+        command = [f"{build}/cli/kerf", "run", f"{here}/soft_block.yaml", "--out", out, "--quiet"]
         for k in keys:
             command += ["--set", k]
         subprocess.run(command, stderr=subprocess.DEVNULL)

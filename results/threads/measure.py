@@ -23,7 +23,7 @@ def environment(extra):
 
 def soft_block(env):
     with tempfile.TemporaryDirectory() as out:
-        subprocess.run([f"{build}/app/kerf", "run", f"{here}/soft_block_implicit.yaml", "--out", out, "--quiet"],
+        subprocess.run([f"{build}/cli/kerf", "run", f"{here}/soft_block_implicit.yaml", "--out", out, "--quiet"],
                        env=env, check=True)
         s = json.load(open(f"{out}/summary.json"))
     t = s["timing"]

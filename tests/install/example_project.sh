@@ -14,6 +14,25 @@ test -x "$work/prefix/bin/kerf" || { echo "no bin/kerf in the prefix"; exit 1; }
 # The Python package from the prefix alone (not the build tree's).
 (cd "$work" && PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
   "import kerf, sys; assert kerf.__file__.startswith('$work/prefix/'), kerf.__file__; print('python: kerf', kerf.__version__)")
+# Only the public headers and what they include are installed (cmake/public_headers.cmake):
+# a body's own header is not there, and every installed header compiles from the prefix alone.
+headers="$work/prefix/include/kerf"
+test -f "$headers/problem/user_material.h" || { echo "no public header problem/user_material.h installed"; exit 1; }
+test ! -e "$headers/discretization/meshless/nodal_body.h" || { echo "an internal header was installed"; exit 1; }
+mkdir -p "$work/headers"
+(cd "$headers" && find . -name '*.h' | sed 's|^\./|#include "|; s|$|"|') >"$work/headers/all_headers.cpp"
+echo "installed headers: $(wc -l <"$work/headers/all_headers.cpp")"
+cat >"$work/headers/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.25)
+project(kerf_headers LANGUAGES C CXX)
+set(CMAKE_CXX_STANDARD 20)
+find_package(kerf REQUIRED)
+add_library(all_headers OBJECT all_headers.cpp)
+target_link_libraries(all_headers PRIVATE kerf::cli)
+CMAKE
+cmake -S "$work/headers" -B "$work/headers/build" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >"$work/headers.log" 2>&1 &&
+  cmake --build "$work/headers/build" >>"$work/headers.log" 2>&1 || { tail -40 "$work/headers.log"; exit 1; }
 cmake -S "$source_dir/examples/user_material" -B "$work/example" -DCMAKE_PREFIX_PATH="$work/prefix" \
   -DCMAKE_BUILD_TYPE=Release -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >"$work/configure.log" ||
   { cat "$work/configure.log"; exit 1; }

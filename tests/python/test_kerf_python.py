@@ -20,7 +20,7 @@ TET4 = ["discretization.fem.element=tet4", "discretization.fem.size=0.004"]
 def command_line_summary(tmp_path, overrides):
     out = tmp_path / "command_line"
     sets = [arg for o in overrides for arg in ("--set", o)]
-    subprocess.run([os.path.join(BUILD, "app", "kerf"), "run", CANTILEVER, "--quiet", "--out", str(out), *sets],
+    subprocess.run([os.path.join(BUILD, "cli", "kerf"), "run", CANTILEVER, "--quiet", "--out", str(out), *sets],
                    check=True)
     with open(out / "summary.json") as f:
         return json.load(f)

@@ -51,7 +51,7 @@ struct Stopped {
 /// failing after a minute more).
 Stopped run_and_signal(const std::vector<std::string>& args, const std::string& dir,
                        const std::function<bool()>& ready, int signal) {
-  const std::string kerf = std::string(KERF_BINARY_DIR) + "/app/kerf", log = dir + ".stderr.txt";
+  const std::string kerf = std::string(KERF_BINARY_DIR) + "/cli/kerf", log = dir + ".stderr.txt";
   std::vector<char*> argv{const_cast<char*>("kerf")};
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);

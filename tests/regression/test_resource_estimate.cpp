@@ -26,7 +26,7 @@ struct Ran {
 Ran run_kerf(const std::string& name, const std::string& scene, const std::vector<std::string>& overrides,
              const std::string& environment = "", const std::string& extra = "") {
   const std::string dir = testing::output_directory("estimate_" + name), log = dir + ".stderr.txt";
-  std::string command = environment + " '" + std::string(KERF_BINARY_DIR) + "/app/kerf' run '" +
+  std::string command = environment + " '" + std::string(KERF_BINARY_DIR) + "/cli/kerf' run '" +
                         testing::source_path(scene) + "' --out '" + dir + "' --quiet --set output.vtk=false";
   for (const std::string& o : overrides) command += " --set '" + o + "'";
   command += " " + extra + " 2> '" + log + "'";

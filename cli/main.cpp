@@ -1,5 +1,5 @@
 // kerf: soft-tissue cutting simulation, FEM against enriched meshless methods.
-#include "app/cli.h"
+#include "cli/command_line.h"
 #include "core/denormals.h"
 #include "core/thread_policy.h"
 

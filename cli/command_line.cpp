@@ -1,4 +1,4 @@
-#include "app/cli.h"
+#include "cli/command_line.h"
 
 #include <algorithm>
 #include <cstdio>
