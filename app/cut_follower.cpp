@@ -17,8 +17,8 @@ void record_growth(RunReport& report, double start, double updated, double refre
 
 }  // namespace
 
-CutFollower::CutFollower(const Scene& scene, SharedCuts cuts)
-    : scene_(scene), cuts_(std::move(cuts)), pieces_(cuts_->pieces_at(0.0)) {}
+CutFollower::CutFollower(const Scene& scene, SharedCuts cuts, const MpiContext& mpi)
+    : scene_(scene), cuts_(std::move(cuts)), mpi_(mpi), pieces_(cuts_->pieces_at(0.0)) {}
 
 bool CutFollower::follow(RunParts& run, SolverState& state, RunReport& report) {
   const Index now = cuts_->pieces_at(state.t);
@@ -49,7 +49,7 @@ void CutFollower::update_rows(CutsInShapeFunctions& body, RunParts& run, SolverS
 void CutFollower::rebuild(RunParts& run, SolverState& state, RunReport& report) const {
   const double start = now_seconds();
   RunReport rebuild_report;  // its setup phase is the cut update's, not the run's
-  std::unique_ptr<DiscreteBody> body = make_body(scene_, cuts_, rebuild_report, state.t);
+  std::unique_ptr<DiscreteBody> body = make_body(scene_, cuts_, rebuild_report, state.t, mpi_);
   const MeshedBody* meshed = capability<MeshedBody>(*body);
   KERF_CHECK(meshed, "internal: a body that neither updates its cuts in place nor has a mesh cannot follow a cut");
   const StateTransfer transfer(*run.body, meshed->mesh());
@@ -86,8 +86,8 @@ void CutFollower::split_further(const CutsBySplitting& splitting, RunParts& run,
 void CutFollower::replace_body(std::unique_ptr<DiscreteBody> body, RunParts& run, SolverState& state,
                                const Vector& carried_mode, RunReport& report) const {
   run.stepper.reset();
-  run.mechanics = std::make_unique<MechanicalSystem>(*body, scene_, report);
-  run.stepper = make_stepper(*run.mechanics, scene_, report, carried_mode);
+  run.mechanics = std::make_unique<MechanicalSystem>(*body, scene_, report, mpi_.ranks);
+  run.stepper = make_stepper(*run.mechanics, stepper_settings(scene_), report, carried_mode);
   run.stepper->discretization_changed(state);
   run.body = std::move(body);
 }

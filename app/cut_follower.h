@@ -15,13 +15,15 @@
 // Each growth is timed (cut_update_ms: the body's update; cut_refresh_ms: the
 // solver side re-reading it) and counted in the report.
 #include "app/run_parts.h"
+#include "core/mpi_context.h"
 #include "discretization/cut_timeline.h"
 
 namespace kerf {
 
 class CutFollower {
  public:
-  CutFollower(const Scene& scene, SharedCuts cuts);
+  /// `mpi`: the run's ranks, for the bodies it builds again.
+  CutFollower(const Scene& scene, SharedCuts cuts, const MpiContext& mpi = {});
 
   /// Brings the run up to the cuts at state.t. True when the body changed:
   /// the probes are then gone (null) and must be resolved again.
@@ -38,6 +40,7 @@ class CutFollower {
 
   const Scene& scene_;
   SharedCuts cuts_;
+  MpiContext mpi_;
   Index pieces_;  // present when the body was last brought up to date
 };
 

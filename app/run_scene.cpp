@@ -39,7 +39,7 @@ ResourceEstimate estimate_and_guard(const Scene& scene, const RunOptions& option
   const ResourceEstimate estimate = estimate_resources(scene);
   summary["estimate"] = estimate_to_json(estimate);
   if (!options.force) {
-    refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.ranks));
+    refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.mpi.ranks));
     if (options.writes_files()) refuse_output_that_cannot_fit(scene, estimate, directory);
   }
   return estimate;
@@ -84,13 +84,14 @@ std::shared_ptr<const BodySnapshot> final_body(const RunParts& run, const Solver
 }
 
 /// The body, its mechanical system, stepper and probes, the initial state.
-RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, RunReport& report) {
+RunParts set_up(const Scene& scene, const SharedCuts& cuts, const MpiContext& mpi, SolverState& state,
+                RunReport& report) {
   RunParts run;
-  run.body = make_body(scene, cuts, report);
+  run.body = make_body(scene, cuts, report, 0.0, mpi);
   stop_if_interrupted("after the body was built (", run.body->node_count(), " nodes), before any step");
-  run.mechanics = std::make_unique<MechanicalSystem>(*run.body, scene, report);
+  run.mechanics = std::make_unique<MechanicalSystem>(*run.body, scene, report, mpi.ranks);
   run.probes = std::make_unique<ProbeSet>(scene, *run.mechanics);
-  run.stepper = make_stepper(*run.mechanics, scene, report);
+  run.stepper = make_stepper(*run.mechanics, stepper_settings(scene), report);
   RankCounts& parallel = report.parallel;
   parallel.memory.after_body = peak_memory_mb();
   stop_if_interrupted("before the first assembly, with the body built");
@@ -99,7 +100,7 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, SolverState& state, 
   report.counts = {run.body->node_count(), run.body->dof_count(), run.body->element_count(),
                    run.body->mean_neighbors()};
   const RowShare& share = run.mechanics->dof_share();
-  parallel.ranks = process_ranks().count;
+  parallel.ranks = mpi.ranks.count;
   parallel.partitioned = share.partial;
   parallel.owned_rows = share.owned_end - share.owned_begin;
   parallel.touched_rows = share.partial ? static_cast<Index>(share.touched.size()) : run.mechanics->dof_count();
@@ -117,8 +118,8 @@ std::vector<MemoryMarks> memory_of_every_rank(const MemoryMarks& mine, const Ran
 
 /// The step loop: each step, then the cuts followed, then the output it is due.
 void step(const Scene& scene, const SharedCuts& cuts, RunParts& run, SolverState& state, RunObserver& observer,
-          RunReport& report, json& summary, bool quiet) {
-  CutFollower follower(scene, cuts);
+          RunReport& report, json& summary, const RunOptions& options) {
+  CutFollower follower(scene, cuts, options.mpi);
   const int steps = run.stepper->step_count();
   const double dt = run.stepper->time_step(), start = now_seconds();
   const bool every_step = scene.solve.analysis == Analysis::static_analysis || scene.output.vtk_every <= 0;
@@ -141,7 +142,7 @@ void step(const Scene& scene, const SharedCuts& cuts, RunParts& run, SolverState
     const bool last = i == steps;
     if (last || i % output_every == 0) observer.write(run, state, report.cut_update_seconds.size(), report);
     if (last) summary["probes"] = observer.final_probes(run, state);
-    if (!quiet && (last || i % std::max(1, steps / 10) == 0))
+    if (!options.quiet && (last || i % std::max(1, steps / 10) == 0))
       std::fprintf(stderr, "kerf: %s step %d/%d  t = %.6g  (%.3g s)\n", scene.name.c_str(), i, steps, state.t,
                    now_seconds() - start);
   }
@@ -160,7 +161,7 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   const bool writes = options.writes_files();
   if (writes) std::filesystem::create_directories(outcome.directory);
-  if (options.ranks.distributed()) wait_for_every_rank();  // they write pieces in it
+  if (options.mpi.ranks.distributed()) wait_for_every_rank();  // they write pieces in it
   const std::string summary_path = outcome.directory + "/summary.json";
   Scene resolved = scene;
   resolved.output.dir = outcome.directory;
@@ -176,16 +177,16 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     const double start = now_seconds();
     SolverState state;
     std::optional<ProgressHeartbeat> heartbeat = announce_long_meshing(scene, options, estimate);
-    RunParts run = set_up(scene, cuts, state, report);
+    RunParts run = set_up(scene, cuts, options.mpi, state, report);
     heartbeat.reset();
     report.setup_seconds = now_seconds() - start;
-    RunObserver observer(scene, outcome.directory, cuts, *run.probes, options.ranks);
+    RunObserver observer(scene, outcome.directory, cuts, *run.probes, options.mpi.ranks);
     observer.write(run, state, 0, report);
     const double loop_start = now_seconds();
-    step(scene, cuts, run, state, observer, report, summary, options.quiet);
+    step(scene, cuts, run, state, observer, report, summary, options);
     report.solve_seconds = now_seconds() - loop_start;
     report.parallel.memory.at_end = peak_memory_mb();
-    report.parallel.memory_by_rank = memory_of_every_rank(report.parallel.memory, options.ranks);
+    report.parallel.memory_by_rank = memory_of_every_rank(report.parallel.memory, options.mpi.ranks);
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
     if (options.keep_final_body) outcome.final_body = final_body(run, state);
     write_report(report, summary);
@@ -194,11 +195,11 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
   } catch (const std::exception& e) {
     write_report(report, summary);
     write_failure(e, summary);
-    if (options.ranks.distributed()) summary["error_rank"] = options.ranks.rank;
+    if (options.mpi.ranks.distributed()) summary["error_rank"] = options.mpi.ranks.rank;
     if (writes) write_file_atomically(summary_path, summary_text(summary));
     // Failing alone, this rank leaves rank 0 waiting in a collective: it must say it itself.
-    if (!writes && options.ranks.distributed())
-      stop_every_rank(options.ranks, 1, e.what(), dynamic_cast<const SharedFailure*>(&e) != nullptr,
+    if (!writes && options.mpi.ranks.distributed())
+      stop_every_rank(options.mpi.ranks, 1, e.what(), dynamic_cast<const SharedFailure*>(&e) != nullptr,
                       [&] { write_file_atomically(summary_path, summary_text(summary)); });
     throw;
   }

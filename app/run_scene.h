@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "core/rank_share.h"
+#include "core/mpi_context.h"
 #include "core/run_report.h"
 #include "discretization/body_snapshot.h"
 #include "discretization/cut_timeline.h"
@@ -15,10 +15,10 @@ namespace kerf {
 struct RunOptions {
   std::string out_dir;  // overrides output.dir when not empty
   bool quiet = false;
-  RankShare ranks{};  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
+  MpiContext mpi{};  // under mpirun: rank 0 writes the files, every rank its piece of the ParaView series
+  bool writes_files() const { return mpi.ranks.rank == 0; }
   bool force = false;  // run even when the resource estimate says the run cannot fit in memory
   bool keep_final_body = false;  // RunOutcome::final_body (the Python module's arrays)
-  bool writes_files() const { return ranks.rank == 0; }
 };
 
 struct RunOutcome {

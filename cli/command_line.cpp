@@ -110,8 +110,6 @@ int run_command_line(const std::vector<std::string>& args) {
     std::cerr << "kerf: error: " << e.what() << "\n";
     return 1;
   }
-  set_process_ranks(ranks);
-  if (ranks.distributed()) set_first_rank_sender(&send_from_first_rank);
   std::string refusal;  // why the command line or the scene cannot run
   try {
     a = parse(args);
@@ -150,7 +148,7 @@ int run_command_line(const std::vector<std::string>& args) {
     options.force = a.force;
     // Under mpirun every rank runs the scene; rank 0 alone prints and writes (but the series' pieces).
     options.quiet = a.quiet || ranks.rank != 0;
-    options.ranks = ranks;
+    options.mpi = {ranks, ranks.distributed() ? &send_from_first_rank : nullptr};
     RunOutcome outcome = run_scene(scene, options);
     if (!options.quiet) {
       for (const std::string& note : outcome.report.notes) std::cerr << "kerf: note: " << note << "\n";

@@ -19,8 +19,8 @@ namespace {
 /// The mesh of the scene's box (gmsh at `size`, of cells of `order`,
 /// conforming to and opened along `cuts`), or its mesh file as it stands.
 /// Made on rank 0 alone under mpirun.
-Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
-  return mesh_from_first_rank([&] {
+Mesh make_mesh(const MpiContext& mpi, const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
+  return mesh_from_first_rank(mpi, [&] {
     if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
     BoxMeshRequest request;
     request.cuts = std::move(cuts);
@@ -38,13 +38,13 @@ Mesh make_mesh(const Scene& scene, int order, double size, std::vector<CutPiece>
 /// another. A linear mesh file asked for quadratic cells is raised by gmsh
 /// (mid-edge nodes on its straight edges); a quadratic one asked for linear
 /// cells keeps its corners (edges straightened). Either is said in the notes.
-Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
+Mesh make_fem_mesh(const MpiContext& mpi, const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
   const ElementType element = scene.discretization.fem.element;
   const MeshPlan plan = body_plan(scene).mesh;
   const int order = plan.order;
-  if (scene.box) return make_mesh(scene, order, plan.size, std::move(cuts));
+  if (scene.box) return make_mesh(mpi, scene, order, plan.size, std::move(cuts));
   int file_order = order;
-  Mesh mesh = mesh_from_first_rank([&] {
+  Mesh mesh = mesh_from_first_rank(mpi, [&] {
     return read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
                     &file_order);
   });
@@ -64,16 +64,17 @@ Mesh make_fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& re
 /// (contact splits its points too; meshless cuts change shape functions, not
 /// the rows). Not a body that a growing cut rebuilds (FEM meshes it anew):
 /// it runs whole on every rank, only the linear solve shared.
-RankShare rank_share(const Scene& scene, const CutTimeline& cuts) {
+RankShare rank_share(const MpiContext& mpi, const Scene& scene, const CutTimeline& cuts) {
   const bool rebuilt = method_descriptor(scene.discretization.method).rebuilt_as_cut_grows && cuts.grows();
-  return rebuilt ? RankShare{} : process_ranks();
+  return rebuilt ? RankShare{} : mpi.ranks;
 }
 
-std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts cuts, RunReport& report) {
+std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Scene& scene, SharedCuts cuts,
+                                                 RunReport& report) {
   const BodyPlan plan = body_plan(scene);
   std::optional<Mesh> background;
   if (plan.mesh.made) {
-    background = corner_mesh(make_mesh(scene, plan.mesh.order, plan.mesh.size));
+    background = corner_mesh(make_mesh(mpi, scene, plan.mesh.order, plan.mesh.size));
     order_for_locality(*background);
     report.add_stage("mesh");
   }
@@ -82,7 +83,7 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const Scene& scene, SharedCuts 
                                      : lattice_nodes(scene.dimension, *scene.box, options.spacing,
                                                      scene.discretization.refine, options.support);
   report.add_stage("nodes");
-  const RankShare share = rank_share(scene, *cuts);
+  const RankShare share = rank_share(mpi, scene, *cuts);
   MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
   report.add_stage("shape functions");
   if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain), share);
@@ -95,20 +96,21 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
   return make_body(scene, std::make_shared<const CutTimeline>(scene), report, 0.0);
 }
 
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time) {
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time,
+                                        const MpiContext& mpi) {
   ScopedTimer timer(report.phases, Phase::setup);
-  if (method_descriptor(scene.discretization.method).meshless) return make_meshless_body(scene, std::move(cuts), report);
+  if (method_descriptor(scene.discretization.method).meshless) return make_meshless_body(mpi, scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
-  Mesh mesh = make_fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report);
+  Mesh mesh = make_fem_mesh(mpi, scene, cuts->fem_pieces(FemCut::remesh, time), report);
   report.add_stage("mesh");
   if (!removed.empty()) {
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
     report.add_stage("cut cells removed");
   }
   const std::vector<CutPiece> split = cuts->fem_pieces(FemCut::split, time);
-  auto body = std::make_unique<FemBody>(scene, std::move(mesh), rank_share(scene, *cuts), split);
+  auto body = std::make_unique<FemBody>(scene, std::move(mesh), rank_share(mpi, scene, *cuts), split);
   record_split(*body, report);
   return body;
 }

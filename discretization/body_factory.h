@@ -3,6 +3,7 @@
 // the method the scene asks for. Records the stages it builds in the report.
 #include <memory>
 
+#include "core/mpi_context.h"
 #include "core/run_report.h"
 #include "discretization/cut_timeline.h"
 #include "discretization/discrete_body.h"
@@ -13,9 +14,11 @@ namespace kerf {
 /// (`fem: remesh`), whose cells are removed (`fem: remove`) or split
 /// (`fem: split`); the meshless
 /// methods enrich their weights with the cuts as they grow. Contact is not
-/// the body's: solvers/mechanical_system.h adds it.
-std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time = 0.0);
-/// The same, building the scene's cut timeline on the way (tests, studies).
+/// the body's: solvers/mechanical_system.h adds it. Under mpirun (`mpi`
+/// distributed), rank 0 alone meshes and the body computes its rank's part.
+std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time = 0.0,
+                                        const MpiContext& mpi = {});
+/// The same, serial, building the scene's cut timeline on the way (tests, studies).
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report);
 
 /// What a split by `fem: split` did to a FEM body as it stands (cells split,

@@ -1,7 +1,7 @@
 #include "geometry/mesh_from_first_rank.h"
 
 #include "core/check.h"
-#include "core/rank_share.h"
+#include "core/mpi_context.h"
 
 namespace kerf {
 
@@ -32,15 +32,14 @@ Mesh mesh_from_numbers(const std::vector<double>& numbers) {
   return mesh;
 }
 
-Mesh mesh_from_first_rank(const std::function<Mesh()>& make) {
-  const RankShare& ranks = process_ranks();
-  if (!ranks.distributed()) return make();
-  if (ranks.rank == 0) {
+Mesh mesh_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& make) {
+  if (!mpi.distributed()) return make();
+  if (mpi.ranks.rank == 0) {
     Mesh mesh = make();
-    from_first_rank(mesh_to_numbers(mesh));
+    mpi.from_first_rank(mesh_to_numbers(mesh));
     return mesh;
   }
-  return mesh_from_numbers(from_first_rank({}));
+  return mesh_from_numbers(mpi.from_first_rank({}));
 }
 
 }  // namespace kerf

@@ -5,15 +5,16 @@
 #include <functional>
 #include <vector>
 
+#include "core/mpi_context.h"
 #include "geometry/mesh.h"
 
 namespace kerf {
 
 /// make() on rank 0 alone; every rank returns rank 0's mesh. A collective
-/// call under mpirun (core/rank_share.h's from_first_rank); make() itself in
-/// a serial run. When make() throws on rank 0, the others wait in the call
+/// call under mpirun (MpiContext::from_first_rank); make() itself in a
+/// serial run. When make() throws on rank 0, the others wait in the call
 /// until the job is stopped (the command line stops every rank).
-Mesh mesh_from_first_rank(const std::function<Mesh()>& make);
+Mesh mesh_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& make);
 
 /// The mesh as the numbers that go between ranks, and back.
 std::vector<double> mesh_to_numbers(const Mesh& mesh);

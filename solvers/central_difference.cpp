@@ -20,9 +20,10 @@ namespace {
 
 class CentralDifferenceStepper final : public Stepper {
  public:
-  CentralDifferenceStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report, const Vector& carried_mode)
-      : mechanics_(mechanics), report_(report), options_(scene.solve), alpha_(scene.material.damping_mass),
-        beta_(scene.material.damping_stiffness), constrained_(mechanics.dirichlet(0.0)) {
+  CentralDifferenceStepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report,
+                           const Vector& carried_mode)
+      : mechanics_(mechanics), report_(report), options_(settings.solve), alpha_(settings.damping_mass),
+        beta_(settings.damping_stiffness), constrained_(mechanics.dirichlet(0.0)), dt_location_(settings.dt_location) {
     ScopedTimer timer(report.phases, Phase::setup);
     report.add_stage("mass");
     mass_ = mechanics_.lumped_mass();
@@ -43,7 +44,6 @@ class CentralDifferenceStepper final : public Stepper {
       critical_step_ = estimate_critical_step();
       fresh_estimate_ = true;
     }
-    dt_location_ = scene.locate("solve.dt").describe();
   }
 
   void initialize(SolverState& s) override {
@@ -256,9 +256,9 @@ class CentralDifferenceStepper final : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const Scene& scene,
+std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
                                                          RunReport& report, const Vector& carried_mode) {
-  return std::make_unique<CentralDifferenceStepper>(mechanics, scene, report, carried_mode);
+  return std::make_unique<CentralDifferenceStepper>(mechanics, settings, report, carried_mode);
 }
 
 }  // namespace kerf

@@ -12,7 +12,7 @@ namespace kerf {
 double damped_critical_step(double undamped_step, double beta);
 
 /// carried_mode: see make_stepper.
-std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const Scene& scene,
+std::unique_ptr<Stepper> make_central_difference_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
                                                          RunReport& report, const Vector& carried_mode = {});
 
 }  // namespace kerf

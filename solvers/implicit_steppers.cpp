@@ -23,12 +23,12 @@ void apply_dirichlet(const std::vector<DirichletDof>& prescribed, Vector& u) {
 
 class StaticStepper final : public Stepper {
  public:
-  StaticStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
+  StaticStepper(MechanicalSystem& mechanics, const SolveOptions& solve, RunReport& report)
       : mechanics_(mechanics),
-        options_(scene.solve),
-        system_(mechanics, scene.solve, false, report),
+        options_(solve),
+        system_(mechanics, solve, false, report),
         report_(report),
-        control_(1.0 / scene.solve.load_steps, scene.solve, report) {
+        control_(1.0 / solve.load_steps, solve, report) {
     load_at(1.0, f_ext_);
     load_scale_ = f_ext_.norm();
   }
@@ -145,13 +145,13 @@ class StaticStepper final : public Stepper {
 /// the Newton loop and the reactions are shared.
 class DynamicImplicitStepper : public Stepper {
  public:
-  DynamicImplicitStepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report)
+  DynamicImplicitStepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report)
       : mechanics_(mechanics),
-        options_(scene.solve),
-        alpha_(scene.material.damping_mass),
-        beta_(scene.material.damping_stiffness),
-        system_(mechanics, scene.solve, true, report),
-        control_(scene.solve.dt, scene.solve, report) {}
+        options_(settings.solve),
+        alpha_(settings.damping_mass),
+        beta_(settings.damping_stiffness),
+        system_(mechanics, settings.solve, true, report),
+        control_(settings.solve.dt, settings.solve, report) {}
 
   void initialize(SolverState& s) override {
     const Index n = mechanics_.dof_count();
@@ -296,14 +296,16 @@ class NewmarkStepper final : public DynamicImplicitStepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
-  return std::make_unique<StaticStepper>(mechanics, scene, report);
+std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const SolveOptions& solve, RunReport& report) {
+  return std::make_unique<StaticStepper>(mechanics, solve, report);
 }
-std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
-  return std::make_unique<ImplicitEulerStepper>(mechanics, scene, report);
+std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
+                                                     RunReport& report) {
+  return std::make_unique<ImplicitEulerStepper>(mechanics, settings, report);
 }
-std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report) {
-  return std::make_unique<NewmarkStepper>(mechanics, scene, report);
+std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
+                                              RunReport& report) {
+  return std::make_unique<NewmarkStepper>(mechanics, settings, report);
 }
 
 }  // namespace kerf

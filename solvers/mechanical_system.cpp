@@ -9,15 +9,15 @@
 
 namespace kerf {
 
-MechanicalSystem::MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report)
-    : body_(body), body_dofs_(body.dof_count()) {
+MechanicalSystem::MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report, RankShare ranks)
+    : body_(body), body_dofs_(body.dof_count()), ranks_(ranks) {
   if (!scene.contact.empty()) {
     ScopedTimer timer(report.phases, Phase::setup);
     const SurfaceSampling* surface = capability<SurfaceSampling>(body);
     KERF_CHECK(surface, scene.contact.front().where.describe(),
                ": this discretization has no surface samples, so nothing can touch it");
     const PartitionedAssembly* part = capability<PartitionedAssembly>(body);
-    const RankShare points = part && part->partitioned() ? process_ranks() : RankShare{};
+    const RankShare points = part && part->partitioned() ? ranks_ : RankShare{};
     contact_ = std::make_unique<ContactTerm>(scene, *surface, body_dofs_, body.dofs_per_node(), points);
     report.add_stage("contact");
   }
@@ -25,9 +25,9 @@ MechanicalSystem::MechanicalSystem(DiscreteBody& body, const Scene& scene, RunRe
 }
 
 void MechanicalSystem::share_rows() {
-  const RankShare ranks = process_ranks();
   const int dim = dofs_per_node();
   const PartitionedAssembly* part = capability<PartitionedAssembly>(body_);
+  const RankShare ranks = ranks_;
   if (part && part->partitioned()) {
     // Rows: the body's own nodes; the spheres' (after the body's) the last rank's.
     share_.owned_begin = dim * part->owned_nodes().first;

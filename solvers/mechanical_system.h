@@ -6,6 +6,7 @@
 // of contact and contact nothing of the method.
 #include <memory>
 
+#include "core/rank_share.h"
 #include "core/run_report.h"
 #include "discretization/discrete_body.h"
 #include "solvers/contact_term.h"
@@ -19,7 +20,9 @@ class MechanicalSystem {
  public:
   /// The body with the scene's contact (none without `contact` in the scene).
   /// Throws when the scene has contact and the body has no surface samples.
-  MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report);
+  /// `ranks`: this process among the run's MPI ranks (the linear systems'
+  /// rows are split between them; a partitioned body's are its own nodes').
+  MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report, RankShare ranks = {});
 
   const DiscreteBody& body() const { return body_; }
   /// The body's tangents from now on: definite (projected) or exact (DiscreteBody::use_definite_tangent).
@@ -99,6 +102,7 @@ class MechanicalSystem {
 
   DiscreteBody& body_;
   Index body_dofs_;
+  RankShare ranks_;  // this process among the run's
   std::unique_ptr<ContactTerm> contact_;
   RowShare share_;
   std::unique_ptr<RankSum> rank_sum_;

@@ -3,6 +3,7 @@
 // whatever the method. A static analysis is a stepper too: its steps are load
 // increments in pseudo-time 0..1.
 #include <memory>
+#include <string>
 
 #include "core/run_report.h"
 #include "solvers/mechanical_system.h"
@@ -44,12 +45,23 @@ class Stepper {
   virtual Vector vibration_mode() const { return {}; }
 };
 
-/// Picks static, implicit Euler, Newmark or central differences from the scene.
+/// What a stepper needs of a scene, and nothing else: the solve options, the
+/// material's Rayleigh damping (C = alpha M + beta K) and where solve.dt was
+/// written (an explicit dt above the critical step is refused naming it).
+struct StepperSettings {
+  SolveOptions solve;
+  double damping_mass = 0.0;       // alpha (1/s)
+  double damping_stiffness = 0.0;  // beta (s)
+  std::string dt_location;
+};
+StepperSettings stepper_settings(const Scene& scene);
+
+/// Picks static, implicit Euler, Newmark or central differences from the settings.
 /// Refuses an explicit dt above the critical estimate, naming the estimate.
 /// With `carried_mode` (a previous stepper's vibration_mode() carried to this
 /// body), the stepper continues a run whose body was replaced: an explicit one
 /// estimates its critical step in discretization_changed, from that mode.
-std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report,
+std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report,
                                       const Vector& carried_mode = {});
 
 }  // namespace kerf

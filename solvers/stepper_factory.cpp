@@ -4,16 +4,22 @@
 
 namespace kerf {
 
-std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const Scene& scene, RunReport& report,
+StepperSettings stepper_settings(const Scene& scene) {
+  return {scene.solve, scene.material.damping_mass, scene.material.damping_stiffness,
+          scene.locate("solve.dt").describe()};
+}
+
+std::unique_ptr<Stepper> make_stepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report,
                                       const Vector& carried_mode) {
-  if (scene.solve.analysis == Analysis::static_analysis) return make_static_stepper(mechanics, scene, report);
-  switch (scene.solve.integrator) {
+  const SolveOptions& solve = settings.solve;
+  if (solve.analysis == Analysis::static_analysis) return make_static_stepper(mechanics, solve, report);
+  switch (solve.integrator) {
     case Integrator::implicit_euler:
-      return make_implicit_euler_stepper(mechanics, scene, report);
+      return make_implicit_euler_stepper(mechanics, settings, report);
     case Integrator::newmark:
-      return make_newmark_stepper(mechanics, scene, report);
+      return make_newmark_stepper(mechanics, settings, report);
     case Integrator::central_difference:
-      return make_central_difference_stepper(mechanics, scene, report, carried_mode);
+      return make_central_difference_stepper(mechanics, settings, report, carried_mode);
   }
   return nullptr;
 }

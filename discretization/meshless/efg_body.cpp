@@ -84,9 +84,9 @@ void EfgBody::assemble_loads() {
     auto near = t.neighbours.of(p);
     const double* phi = t.values_of(p);
     for (std::size_t k = 0; k < near.size(); ++k)
-      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * scene_.gravity[i];
+      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * gravity_[i];
   }
-  domain_.add_boundary_loads(scene_, load_);
+  domain_.add_boundary_loads(boundary_, load_);
 }
 
 CutUpdate EfgBody::update_for_cuts(double t) {
@@ -104,7 +104,7 @@ CutUpdate EfgBody::update_for_cuts(double t) {
   if (constraints_)
     constraints_->update_for_cuts(
         domain_, moved, WeakBoundaryConditions::VolumePoints{points_.shapes(), points_.weights(), points_.positions()});
-  const bool gravity = scene_.gravity.squaredNorm() > 0.0;
+  const bool gravity = gravity_.squaredNorm() > 0.0;
   if ((gravity && update.points > 0) || domain_.boundary_loads_touch(changed)) assemble_loads();
   return update;
 }

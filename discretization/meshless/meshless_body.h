@@ -82,7 +82,7 @@ class MeshlessBody : public DiscreteBody,
  protected:
   MeshlessBody(const Scene& scene, MeshlessDomain domain)
       : domain_(std::move(domain)), law_(scene.material), density_(scene.material.density),
-        scene_(scene) {}
+        gravity_(scene.gravity), boundary_(scene.boundary) {}
 
   /// The body's weakly imposed conditions (null when none).
   virtual const WeakBoundaryConditions* weak_conditions() const { return nullptr; }
@@ -103,7 +103,9 @@ class MeshlessBody : public DiscreteBody,
   double density_;  // kg/m^3
   Vector load_;     // dead loads (N)
   std::vector<DirichletDof> dirichlet_;
-  Scene scene_;  // the loads, integrated again when a growing cut changes their shape functions
+  // The loads, integrated again when a growing cut changes their shape functions.
+  Vec3 gravity_;                              // m/s^2
+  std::vector<BoundaryCondition> boundary_;  // the scene's conditions (tractions and pressures are loads)
 
  private:
   ConstraintResidual constraint_setup_, constraint_worst_, uncorrected_worst_;

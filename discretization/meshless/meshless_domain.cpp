@@ -534,9 +534,9 @@ std::vector<DirichletDof> MeshlessDomain::nodal_constraints(const Scene& scene,
       scene, dimension(), [this](const Selection& s) { return select_nodes(s); }, nodes_.positions, take);
 }
 
-void MeshlessDomain::add_boundary_loads(const Scene& scene, Vector& load) const {
+void MeshlessDomain::add_boundary_loads(std::span<const BoundaryCondition> conditions, Vector& load) const {
   const int dim = dimension();
-  for (const BoundaryCondition& bc : scene.boundary) {
+  for (const BoundaryCondition& bc : conditions) {
     if (bc.is_dirichlet()) continue;
     BoundaryPoints points = boundary_points(facets_in(bc.select), 3);
     ShapeTable t = shapes_at(points.position, "the boundary quadrature point");

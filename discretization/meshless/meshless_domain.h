@@ -53,6 +53,7 @@ class MeshlessDomain {
   MeshlessDomain(MeshlessDomain&&) noexcept;
 
   const NodeSet& nodes() const { return nodes_; }
+  MlsBasis basis() const { return basis_; }
   int dimension() const { return nodes_.dimension; }
   double domain_size() const { return domain_size_; }
   const Mesh& background() const;
@@ -143,7 +144,7 @@ class MeshlessDomain {
   /// Dirichlet conditions `take` accepts; sorted by dof.
   std::vector<DirichletDof> nodal_constraints(const Scene& scene, bool (*take)(const BoundaryCondition&)) const;
   /// Adds the tractions and pressures of the scene (dead loads) into `load` (N).
-  void add_boundary_loads(const Scene& scene, Vector& load) const;
+  void add_boundary_loads(std::span<const BoundaryCondition> conditions, Vector& load) const;
 
   /// Nodes as VTK vertices with the MLS displacement u_h(x_I), Cauchy and von
   /// Mises stress at the nodes, support radius, nodal volume, condition number.

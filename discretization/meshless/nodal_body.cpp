@@ -71,7 +71,7 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
   body_load_ = Vector::Zero(dof_count());
   for (Index I = 0; I < nodes.size(); ++I) weigh_node(I);
   load_ = body_load_;
-  domain_.add_boundary_loads(scene, load_);
+  domain_.add_boundary_loads(scene.boundary, load_);
   if (constraints_)
     dirichlet_ = domain_.nodal_constraints(
         scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });
@@ -82,7 +82,7 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
 
 void NodalBody::weigh_node(Index I) {
   const int dim = domain_.dimension();
-  for (int i = 0; i < dim; ++i) body_load_[dim * I + i] = density_ * domain_.nodes().volume[I] * scene_.gravity[i];
+  for (int i = 0; i < dim; ++i) body_load_[dim * I + i] = density_ * domain_.nodes().volume[I] * gravity_[i];
 }
 
 void NodalBody::integrate_cut_cells() {
@@ -219,13 +219,13 @@ CutUpdate NodalBody::update_for_cuts(double t) {
       pair_row(domain_.nodes(), domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, rows[r], pairs_);
   }
   if (natural_) {
-    natural_->refresh(domain_.nodes(), scene_.discretization.meshless.basis, domain_.at_nodes(), rows,
+    natural_->refresh(domain_.nodes(), domain_.basis(), domain_.at_nodes(), rows,
                       domain_.enrichment());
     if (!resized.empty()) natural_->set_moments(cell_moments());
   }
   if (!resized.empty() || domain_.boundary_loads_touch(changed)) {
     load_ = body_load_;
-    domain_.add_boundary_loads(scene_, load_);
+    domain_.add_boundary_loads(boundary_, load_);
   }
   if (constraints_) {
     std::vector<char> moved(node_count(), 0);

@@ -47,7 +47,7 @@ void implicit_step(benchmark::State& state, const std::string& solver) {
   RunReport report;
   auto body = make_body(scene, report);
   MechanicalSystem mechanics(*body, scene, report);
-  auto stepper = make_stepper(mechanics, scene, report);
+  auto stepper = make_stepper(mechanics, stepper_settings(scene), report);
   SolverState s;
   stepper->initialize(s);
   // Steady state: the first steps pay for the symbolic analysis and first factorization.
@@ -78,13 +78,13 @@ void BM_CentralDifferenceStepCorotational(benchmark::State& state) {
   RunReport probe_report;
   auto probe_body = make_body(probe, probe_report);
   MechanicalSystem probe_mechanics(*probe_body, probe, probe_report);
-  make_stepper(probe_mechanics, probe, probe_report);
+  make_stepper(probe_mechanics, stepper_settings(probe), probe_report);
   Scene scene = probe;
   scene.solve.dt = 0.9 * probe_report.solver.critical_dt_s.value();
   RunReport report;
   auto body = make_body(scene, report);
   MechanicalSystem mechanics(*body, scene, report);
-  auto stepper = make_stepper(mechanics, scene, report);
+  auto stepper = make_stepper(mechanics, stepper_settings(scene), report);
   SolverState s;
   stepper->initialize(s);
   for (auto _ : state) stepper->advance(s, scene.solve.dt);

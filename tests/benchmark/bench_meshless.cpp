@@ -59,7 +59,7 @@ void BM_NodalExplicitStep(benchmark::State& state) {
   RunReport report;
   auto body = make_body(scene, report);
   MechanicalSystem mechanics(*body, scene, report);
-  auto stepper = make_stepper(mechanics, scene, report);
+  auto stepper = make_stepper(mechanics, stepper_settings(scene), report);
   SolverState s;
   stepper->initialize(s);
   std::vector<double> steps;

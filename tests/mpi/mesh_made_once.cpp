@@ -24,10 +24,9 @@ int main() {
   using namespace kerf;
   const RankShare ranks = mpi_ranks();
   if (!ranks.distributed()) fail(0, "run me under mpirun with 2 ranks or more");
-  set_process_ranks(ranks);
-  set_first_rank_sender(&send_from_first_rank);
+  const MpiContext mpi{ranks, &send_from_first_rank};
   int made = 0;
-  const Mesh mesh = mesh_from_first_rank([&] {
+  const Mesh mesh = mesh_from_first_rank(mpi, [&] {
     ++made;
     BoxMeshRequest request;
     request.order = 2;
@@ -38,7 +37,7 @@ int main() {
   if (made != (ranks.rank == 0 ? 1 : 0)) fail(ranks.rank, "meshed " + std::to_string(made) + " times");
   if (mesh.cell_count() == 0 || mesh.order != 2) fail(ranks.rank, "received no tet10 cells");
   const std::vector<double> mine = mesh_to_numbers(mesh);
-  if (from_first_rank(mine) != mine) fail(ranks.rank, "its mesh is not rank 0's");
+  if (mpi.from_first_rank(mine) != mine) fail(ranks.rank, "its mesh is not rank 0's");
   std::printf("rank %d: %d nodes, %d cells, rank 0's\n", ranks.rank, mesh.node_count(), mesh.cell_count());
   return 0;
 }
