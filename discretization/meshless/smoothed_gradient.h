@@ -7,13 +7,10 @@
 // the divergence theorem on the cell minus the cut (n the cut's normal,
 // phi_K+ on the side it points to), so the jump across a crack is not smeared
 // into the strain. The cells are the barycentric dual cells of the node set's
-// simplices (their measures are the nodal volumes): in each simplex, the part
-// where node a's barycentric coordinate is the largest. Boundary samples:
-// 2D, two Gauss points on each dual segment (edge midpoint to centroid) and
-// on each half boundary edge; 3D, the centroid of each triangle of the dual
-// quadrilaterals (edge midpoint, face centroid, centroid, face centroid) and
-// of the boundary faces' quadrilateral parts. Every rule is exact for linear
-// fields, so the smoothed gradient of an affine field is exact (patch test).
+// simplices (their measures are the nodal volumes), sampled as
+// dual_cell_boundaries.h says; the cut's faces as cut_face_points.h says.
+// Every rule is exact for linear fields, so the smoothed gradient of an
+// affine field is exact (patch test).
 #include <array>
 #include <memory>
 #include <span>
@@ -21,6 +18,7 @@
 #include <vector>
 
 #include "discretization/enrichment/cut_weights.h"
+#include "discretization/meshless/dual_cell_boundaries.h"
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "geometry/support_index.h"
@@ -28,21 +26,6 @@
 namespace kerf {
 
 class CellLocator;
-
-/// A flat piece of a cell's boundary: a segment (2D, corners 0-1) or a
-/// triangle (3D), with its outward normal times its length or area.
-struct CellPart {
-  std::array<Vec3, 3> corner;
-  int corners = 2;
-  Vec3 weighted_normal = Vec3::Zero();
-};
-
-/// Where shape functions are sampled for one cell: a point and the outward
-/// normal times the quadrature weight (m^2 in 3D, m in 2D).
-struct CellSample {
-  Vec3 position = Vec3::Zero();
-  Vec3 weighted_normal = Vec3::Zero();
-};
 
 class SmoothedGradients {
  public:
