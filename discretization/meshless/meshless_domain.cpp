@@ -17,17 +17,6 @@
 namespace kerf {
 namespace {
 
-/// How near the front a cell is integrated by its parts: its centroid within
-/// this many times its own radius (largest corner distance) of a front edge.
-/// Measured on the cut block (h 2 / 3 mm, sag): 1 radius -3.9 / -13.6%, 2:
-/// -3.9 / -12.4%, 4: -0.8 / -7.7%, 8: +1.2 / -6.0%; 24 points a cell instead
-/// of 4 changed them by under 1 point: what the nodes' points just outside the
-/// zone miss, not the zone's own rule, is what is left.
-constexpr double front_reach = 4.0;
-
-}  // namespace
-namespace {
-
 std::string support_context(const Scene& scene) {
   std::ostringstream s;
   s << scene.file << ": key 'discretization.meshless.support': value " << scene.discretization.meshless.support
@@ -75,13 +64,11 @@ MeshlessDomain::MeshlessDomain(const Scene& scene, SharedCuts cuts, NodeSet node
     at_nodes_ = shape_table(nodes_, *index_, basis_, nodes_.positions, "the node", error_context_, mls_remedy(),
                             enrichment(), true);
   }
+  if (enrichment_) cell_search_ = std::make_unique<NodeCellSearch>(nodes_.cells, *index_);
   build_boundary_terms(scene);
   if (enrichment_ && scene.discretization.method == Method::nodal && !smoothing_ &&
-      cut_cells_of(scene) == CutCells::split) {
-    visible_cells_ = std::make_unique<VisibleDualCells>(nodes_.cells);
-    volumes_taken_.assign(enrichment_->cut_count(), 0);
-    update_visible_cells();
-  }
+      cut_cells_of(scene) == CutCells::split)
+    cut_cells_ = std::make_unique<CutCellIntegration>(nodes_, *cell_search_, *enrichment_);
 }
 
 BoundaryQuadrature MeshlessDomain::closed_boundary_facets(const Scene& scene) const {
@@ -93,179 +80,14 @@ BoundaryQuadrature MeshlessDomain::closed_boundary_facets(const Scene& scene) co
   return facet_quadrature(boundary_mesh(), facets_, per_direction);
 }
 
-std::vector<Index> MeshlessDomain::cells_near_piece(const CutPiece& piece) const {
-  double reach = 0.0;
-  for (int k = 0; k < dimension(); ++k) reach = std::max(reach, (piece.corner[k] - piece.centre).norm());
-  std::vector<Index> near;
-  index_->within(piece.centre, reach + longest_edge_, near);
-  return cells_near(cells_around_, near);
-}
-
 BoundaryQuadrature MeshlessDomain::cut_faces(Index cut, Index first_piece, Index end_piece) const {
   const double hair = 1e-10 * *std::min_element(nodes_.spacing.begin(), nodes_.spacing.end());
   BoundaryQuadrature out;
   for (Index p = first_piece; p < end_piece; ++p) {
     const CutPiece& piece = enrichment_->surface(cut).pieces[p];
-    out.append(cut_face_quadrature(nodes_.cells, cells_near_piece(piece), piece, hair));
+    out.append(cut_face_quadrature(nodes_.cells, cell_search_->near_piece(piece, dimension()), piece, hair));
   }
   return out;
-}
-
-std::vector<Index> MeshlessDomain::front_cells() const {
-  // The front: the pieces' edges (2D: ends) no other piece shares.
-  const int dim = dimension();
-  std::vector<std::array<Vec3, 2>> front;
-  for (Index c = 0; c < enrichment_->cut_count(); ++c) {
-    const std::vector<CutPiece>& pieces = enrichment_->surface(c).pieces;
-    std::vector<std::array<Vec3, 2>> edges;
-    for (Index p = 0; p < enrichment_->pieces(c); ++p)
-      for (int k = 0; k < dim; ++k) {
-        Vec3 a = pieces[p].corner[k], b = dim == 3 ? pieces[p].corner[(k + 1) % 3] : a;
-        if (std::lexicographical_compare(b.data(), b.data() + 3, a.data(), a.data() + 3)) std::swap(a, b);
-        edges.push_back({a, b});
-      }
-    auto less = [](const std::array<Vec3, 2>& x, const std::array<Vec3, 2>& y) {
-      return std::lexicographical_compare(x[0].data(), x[0].data() + 3, y[0].data(), y[0].data() + 3) ||
-             (x[0] == y[0] && std::lexicographical_compare(x[1].data(), x[1].data() + 3, y[1].data(), y[1].data() + 3));
-    };
-    std::sort(edges.begin(), edges.end(), less);
-    for (std::size_t e = 0; e < edges.size();) {
-      std::size_t f = e + 1;
-      while (f < edges.size() && edges[f] == edges[e]) ++f;
-      if (f - e == 1) front.push_back(edges[e]);
-      e = f;
-    }
-  }
-  // Only where the front runs inside the body (a blade's ends and entry lie
-  // outside it): each edge sampled half the shortest spacing apart, and each
-  // run of samples inside the body taken as one segment.
-  const double step = 0.5 * *std::min_element(nodes_.spacing.begin(), nodes_.spacing.end());
-  std::vector<Index> out, near;
-  auto take_cells_near = [&](const Vec3& a, const Vec3& b) {
-    index_->within(0.5 * (a + b), 0.5 * (b - a).norm() + (front_reach + 1.0) * longest_edge_, near);
-    const Vec3 ab = b - a;
-    for (Index c : cells_near(cells_around_, near)) {
-      const auto [centre, radius] = cell_ball(c);
-      const double t = ab.squaredNorm() > 0.0 ? std::clamp((centre - a).dot(ab) / ab.squaredNorm(), 0.0, 1.0) : 0.0;
-      if ((a + t * ab - centre).norm() <= front_reach * radius) out.push_back(c);
-    }
-  };
-  for (const auto& [a, b] : front) {
-    const int samples = 1 + static_cast<int>(std::ceil((b - a).norm() / step));
-    int run_start = -1;
-    for (int k = 0; k <= samples + 1; ++k) {
-      bool inside = false;
-      if (k <= samples) {
-        const Vec3 x = a + (b - a) * (static_cast<double>(k) / samples);
-        index_->within(x, longest_edge_, near);  // a cell holding x has its corners this near
-        const std::vector<Index> holding = cells_near(cells_around_, near);
-        inside = std::any_of(holding.begin(), holding.end(), [&](Index c) { return holds(c, x); });
-      }
-      if (inside && run_start < 0) run_start = k;
-      if (!inside && run_start >= 0) {
-        const double t0 = std::max(0.0, (run_start - 1.0) / samples), t1 = std::min(1.0, static_cast<double>(k) / samples);
-        take_cells_near(a + t0 * (b - a), a + t1 * (b - a));
-        run_start = -1;
-      }
-    }
-  }
-  std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
-  return out;
-}
-
-bool MeshlessDomain::holds(Index c, const Vec3& x) const {
-  const int dim = dimension();
-  auto n = nodes_.cells.cell(c);
-  Mat3 edges = Mat3::Identity();
-  for (int k = 1; k <= dim; ++k) edges.col(k - 1) = nodes_.cells.nodes[n[k]] - nodes_.cells.nodes[n[0]];
-  const Vec3 l = edges.inverse() * (x - nodes_.cells.nodes[n[0]]);
-  const double tolerance = 1e-9;
-  double sum = 0.0;
-  for (int k = 0; k < dim; ++k) {
-    if (l[k] < -tolerance) return false;
-    sum += l[k];
-  }
-  return sum <= 1.0 + tolerance;
-}
-
-std::pair<Vec3, double> MeshlessDomain::cell_ball(Index c) const {
-  const int corners = dimension() + 1;
-  auto n = nodes_.cells.cell(c);
-  Vec3 centre = Vec3::Zero();
-  for (int k = 0; k < corners; ++k) centre += nodes_.cells.nodes[n[k]] / corners;
-  double radius = 0.0;
-  for (int k = 0; k < corners; ++k) radius = std::max(radius, (nodes_.cells.nodes[n[k]] - centre).norm());
-  return {centre, radius};
-}
-
-void MeshlessDomain::visit_cut_cell_reach(const std::function<void(std::span<const Index>)>& visit) const {
-  if (!cut_cell_points_grow()) return;
-  std::vector<Index> cells, near, reaching;
-  for (Index c = 0; c < enrichment_->cut_count(); ++c)
-    for (const CutPiece& piece : enrichment_->surface(c).pieces) {  // every piece, present or to come
-      double reach = 0.0;
-      for (int k = 0; k < dimension(); ++k) reach = std::max(reach, (piece.corner[k] - piece.centre).norm());
-      index_->within(piece.centre, reach + (front_reach + 1.0) * longest_edge_, near);
-      const std::vector<Index> around = cells_near(cells_around_, near);
-      cells.insert(cells.end(), around.begin(), around.end());
-    }
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  for (Index c : cells) {
-    const auto [centre, radius] = cell_ball(c);
-    index_->reaching(centre, radius, reaching);
-    visit(reaching);
-  }
-}
-
-MeshlessDomain::CutCellPoints MeshlessDomain::cut_cell_points() const {
-  // One point a part: one point a front cell instead (a quarter of the
-  // points) swung the cut block from -6 to +34% (3 and 2.5 mm), soft modes
-  // where the nodes' own points (and their hourglass pairs) had no weight left.
-  CutCellPoints out;
-  if (!visible_cells_) return out;
-  std::vector<Index> cells = front_cells();
-  const std::vector<Index> split = visible_cells_->split_cells();
-  cells.insert(cells.end(), split.begin(), split.end());
-  std::sort(cells.begin(), cells.end());
-  cells.erase(std::unique(cells.begin(), cells.end()), cells.end());
-  out.node_volume = nodes_.volume;
-  out.node_moment = visible_cells_->second_moment();
-  out.cells = static_cast<Index>(cells.size());
-  for (Index c : cells) {
-    auto n = nodes_.cells.cell(c);
-    const VisibleDualCells::CellShares shares = visible_cells_->shares(nodes_.cells, c);
-    const double whole = std::abs(cell_measure(nodes_.cells, c));
-    for (int a = 0; a <= dimension(); ++a) {
-      const VisibleDualCells::Share& part = shares[a];
-      out.node_volume[n[a]] -= part.volume;
-      out.node_moment[n[a]] -= part.moment;
-      if (part.volume <= 1e-9 * whole) continue;  // a sliver no MLS may fit; its volume is negligible
-      out.position.push_back(part.first / part.volume);
-      out.weight.push_back(part.volume);
-    }
-  }
-  return out;
-}
-
-std::vector<Index> MeshlessDomain::update_visible_cells() {
-  if (!visible_cells_) return {};
-  std::vector<Index> near;
-  std::vector<CutPiece> present;
-  for (Index c = 0; c < enrichment_->cut_count(); ++c) {
-    const std::vector<CutPiece>& pieces = enrichment_->surface(c).pieces;
-    present.insert(present.end(), pieces.begin(), pieces.begin() + enrichment_->pieces(c));
-    for (Index p = volumes_taken_[c]; p < enrichment_->pieces(c); ++p)
-      for (Index cell : cells_near_piece(pieces[p]))  // only the cells a new piece meets change
-        if (piece_meets_cell(pieces[p], nodes_.cells, cell, 1e-9 * longest_edge_)) near.push_back(cell);
-    volumes_taken_[c] = enrichment_->pieces(c);
-  }
-  std::sort(near.begin(), near.end());
-  near.erase(std::unique(near.begin(), near.end()), near.end());
-  std::vector<Index> changed = visible_cells_->update(nodes_.cells, near, present);
-  for (Index I : changed) nodes_.volume[I] = visible_cells_->volume()[I];
-  return changed;
 }
 
 namespace {
@@ -292,13 +114,6 @@ void MeshlessDomain::build_boundary_terms(const Scene& scene) {
   boundary_terms_.assign(dimension() * nodes_.size(), 0.0);
   BoundaryQuadrature points = closed_boundary_facets(scene);
   if (enrichment_) {
-    cells_around_ = node_cells(nodes_.cells);
-    const int corners = dimension() + 1;
-    for (Index c = 0; c < nodes_.cells.cell_count(); ++c)
-      for (int a = 0; a < corners; ++a)
-        for (int b = a + 1; b < corners; ++b)
-          longest_edge_ = std::max(longest_edge_, (nodes_.cells.nodes[nodes_.cells.cell(c)[a]] -
-                                                   nodes_.cells.nodes[nodes_.cells.cell(c)[b]]).norm());
     faces_taken_.assign(enrichment_->cut_count(), 0);
     for (Index c = 0; c < enrichment_->cut_count(); ++c) {
       points.append(cut_faces(c, 0, enrichment_->pieces(c)));
@@ -343,6 +158,14 @@ void MeshlessDomain::update_boundary_terms() {
   add_boundary_terms(boundary_shapes_, boundary_points_, boundary_terms_);
 }
 
+MeshlessDomain::CutCellPoints MeshlessDomain::cut_cell_points() const {
+  return cut_cells_ ? cut_cells_->points(nodes_, *cell_search_, *enrichment_) : CutCellPoints{};
+}
+
+void MeshlessDomain::visit_cut_cell_reach(const std::function<void(std::span<const Index>)>& visit) const {
+  if (cut_cell_points_grow()) cut_cells_->visit_reach(nodes_, *cell_search_, *enrichment_, visit);
+}
+
 MeshlessDomain::~MeshlessDomain() = default;
 MeshlessDomain::MeshlessDomain(MeshlessDomain&&) noexcept = default;
 
@@ -372,7 +195,7 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
   if (!enrichment_) return {};
   std::vector<Index> changed = enrichment_->advance_to(t);
   if (changed.empty()) return changed;
-  if (volumes) *volumes = update_visible_cells();
+  if (volumes) *volumes = cut_cells_ ? cut_cells_->update(nodes_, *cell_search_, *enrichment_) : std::vector<Index>{};
   // The rows a changed node appears in, from the transposed neighbour lists.
   if (covered_.size() == 0) transpose_rows(at_nodes_.neighbours, nodes_.size(), covered_, slot_row_);
   std::vector<Index> touched = lists_holding(covered_, slot_row_, nodes_.size(), changed);

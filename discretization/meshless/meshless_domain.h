@@ -18,7 +18,8 @@
 #include "discretization/meshless/node_set.h"
 #include "discretization/meshless/shape_table.h"
 #include "discretization/meshless/smoothed_gradient.h"
-#include "discretization/meshless/visible_dual_cells.h"
+#include "discretization/meshless/cut_cell_integration.h"
+#include "discretization/meshless/node_cell_search.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/cut_surface.h"
 #include "geometry/mesh.h"
@@ -83,22 +84,12 @@ class MeshlessDomain {
   /// the cells the new pieces cross (visible_dual_cells.h).
   std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr,
                                             std::vector<Index>* volumes = nullptr);
-  /// Nodal integration at a cut (direct gradients, meshless.cut_cells: split):
-  /// the cells a cut splits and those its front runs through or next to are
-  /// integrated by their parts, one point per corner's part at its centroid
-  /// weighted by its volume (a part a cut hands to another corner is that
-  /// corner's, on its side: visible_dual_cells.h); the nodes' own points keep
-  /// the rest of their cells. Empty `position` without such cells.
-  struct CutCellPoints {
-    std::vector<Vec3> position;
-    std::vector<double> weight;       // m^3 (2D m^2)
-    std::vector<double> node_volume;  // per node: its own point's weight, the rest of its cell
-    std::vector<Vec3> node_moment;    // per node: that rest's second moments (NSNI)
-    Index cells = 0;
-  };
+  /// Nodal integration at a cut by the cells' parts (cut_cell_integration.h);
+  /// empty `position` without such cells.
+  using CutCellPoints = CutCellIntegration::Points;
   CutCellPoints cut_cell_points() const;
   /// Do cut_cell_points() change as the cuts grow?
-  bool cut_cell_points_grow() const { return visible_cells_ && growing_; }
+  bool cut_cell_points_grow() const { return cut_cells_ && growing_; }
   /// For a growing cut, every group of nodes a point of cut_cell_points() may
   /// ever join, at any stage of the growth (the sparsity is fixed at set-up):
   /// per cell near the whole cut, the nodes whose support reaches the cell.
@@ -106,7 +97,7 @@ class MeshlessDomain {
   /// NSNI's second moments of the nodes' cells, those a cut crosses split as
   /// the volumes are; null when no cut splits cells.
   const std::vector<Vec3>* split_second_moments() const {
-    return visible_cells_ ? &visible_cells_->second_moment() : nullptr;
+    return cut_cells_ ? &cut_cells_->second_moment() : nullptr;
   }
   /// Does the support of one of these nodes cover a boundary-load quadrature
   /// point (then the load vector must be integrated again)?
@@ -157,17 +148,6 @@ class MeshlessDomain {
   /// direction where loads act (their rule), 2 elsewhere (the weak conditions' rule).
   BoundaryQuadrature closed_boundary_facets(const Scene& scene) const;
   BoundaryQuadrature cut_faces(Index cut, Index first_piece, Index end_piece) const;
-  /// The cells of nodes_.cells the piece may meet.
-  std::vector<Index> cells_near_piece(const CutPiece& piece) const;
-  /// Splits the cells the pieces since the last call cross (nodal
-  /// integration, direct gradients); returns the nodes whose volume changed.
-  std::vector<Index> update_visible_cells();
-  /// The cells a cut's front passes through or next to (a few cells' size).
-  std::vector<Index> front_cells() const;
-  /// Does cell c (of nodes_.cells) hold x, its faces included?
-  bool holds(Index c, const Vec3& x) const;
-  /// A cell's centroid and the largest distance of a corner from it.
-  std::pair<Vec3, double> cell_ball(Index c) const;
   /// boundary_terms_ from scratch; for a growing cut, the points and their
   /// shape functions are kept to be updated.
   void build_boundary_terms(const Scene& scene);
@@ -189,8 +169,7 @@ class MeshlessDomain {
   ShapeTable at_nodes_;  // smoothed gradients with smoothing_
   NeighborLists covered_;  // per node: the slots of at_nodes_ holding it (built at the first cut growth)
   std::vector<double> boundary_terms_;  // the integration constraint's boundary term, per node
-  NodeCells cells_around_;              // nodes_.cells around each node (cuts: their faces' cells)
-  double longest_edge_ = 0.0;           // of nodes_.cells (m)
+  std::unique_ptr<NodeCellSearch> cell_search_;  // nodes_.cells by place (with cuts)
   std::vector<Index> faces_taken_;      // per cut: pieces whose faces are in boundary_terms_
   // A growing cut: the closed boundary's points, their shape functions and
   // per node the slots holding it (built at the first growth after a change).
@@ -201,8 +180,7 @@ class MeshlessDomain {
   std::vector<Index> boundary_pending_;  // nodes growths changed since the last update_boundary_terms
   mutable Index boundary_singular_ = 0;  // boundary points left out, no MLS there (set-up and growths)
   std::vector<Index> slot_row_;  // per slot of at_nodes_: its row (built with covered_)
-  std::unique_ptr<VisibleDualCells> visible_cells_;  // nodal, direct gradients, cuts: the volumes split by them
-  std::vector<Index> volumes_taken_;                 // per cut: pieces the volumes have seen
+  std::unique_ptr<CutCellIntegration> cut_cells_;  // nodal, direct gradients, cuts: the cells split by them
 };
 
 }  // namespace kerf
