@@ -99,7 +99,8 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time,
                                         const MpiContext& mpi) {
   ScopedTimer timer(report.phases, Phase::setup);
-  if (method_descriptor(scene.discretization.method).meshless) return make_meshless_body(mpi, scene, std::move(cuts), report);
+  if (method_descriptor(scene.discretization.method).meshless)
+    return make_meshless_body(mpi, scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);

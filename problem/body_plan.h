@@ -2,8 +2,9 @@
 // What a scene's body is built from, decided once from the method's row
 // (methods.h) and the scene: the mesh gmsh makes or the file gives (its
 // cells' order and size), where a meshless body's nodes come from, and which
-// key sets the node count. The body factory builds this plan and the resource estimate counts it, so
-// the two cannot disagree on what a scene makes.
+// key sets the node count. The body factory builds this plan and the
+// resource estimate counts it, so the two cannot disagree on what a scene
+// makes.
 #include "problem/scene.h"
 
 namespace kerf {

@@ -296,7 +296,8 @@ class NewmarkStepper final : public DynamicImplicitStepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const SolveOptions& solve, RunReport& report) {
+std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const SolveOptions& solve,
+                                             RunReport& report) {
   return std::make_unique<StaticStepper>(mechanics, solve, report);
 }
 std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,

@@ -7,9 +7,11 @@
 
 namespace kerf {
 
-std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const SolveOptions& solve, RunReport& report);
+std::unique_ptr<Stepper> make_static_stepper(MechanicalSystem& mechanics, const SolveOptions& solve,
+                                             RunReport& report);
 std::unique_ptr<Stepper> make_implicit_euler_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
                                                      RunReport& report);
-std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report);
+std::unique_ptr<Stepper> make_newmark_stepper(MechanicalSystem& mechanics, const StepperSettings& settings,
+                                              RunReport& report);
 
 }  // namespace kerf

@@ -142,7 +142,8 @@ std::vector<Index> CutCellIntegration::front_cells(const NodeSet& nodes, const N
       }
       if (inside && run_start < 0) run_start = k;
       if (!inside && run_start >= 0) {
-        const double t0 = std::max(0.0, (run_start - 1.0) / samples), t1 = std::min(1.0, static_cast<double>(k) / samples);
+        const double t0 = std::max(0.0, (run_start - 1.0) / samples);
+        const double t1 = std::min(1.0, static_cast<double>(k) / samples);
         take_cells_near(a + t0 * (b - a), a + t1 * (b - a));
         run_start = -1;
       }

@@ -30,7 +30,8 @@ void CutPoints::of_piece(const CutPiece& piece, int dim, double length, std::vec
   const Vec3 &c0 = piece.corner[0], &c1 = piece.corner[1], &c2 = piece.corner[2];
   if (dim == 2) {
     const int n = std::max(1, static_cast<int>(std::ceil((c1 - c0).norm() / length)));
-    for (int i = 0; i < n; ++i) segment(c0 + (double(i) / n) * (c1 - c0), c0 + (double(i + 1) / n) * (c1 - c0), 40, out);
+    for (int i = 0; i < n; ++i)
+      segment(c0 + (double(i) / n) * (c1 - c0), c0 + (double(i + 1) / n) * (c1 - c0), 40, out);
     return;
   }
   const double longest = std::max({(c1 - c0).norm(), (c2 - c1).norm(), (c0 - c2).norm()});
