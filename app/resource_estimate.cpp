@@ -198,12 +198,12 @@ double points_per_cell(const ElementDescriptor& element) {
 void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const int d = scene.dimension;
   const BodyPlan plan = body_plan(scene);
-  const ElementDescriptor& element = element_descriptor(scene.discretization.fem.element);
   MeshCounts mesh;
   if (plan.mesh.made) mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
   e.mesh_cells = mesh.cells, e.mesh_nodes = mesh.nodes;
   e.size_key = plan.size_key, e.size = plan.size;
   if (!plan.method->meshless) {
+    const ElementDescriptor& element = element_descriptor(scene.discretization.fem.element);
     e.nodes = mesh.nodes;
     e.points = mesh.cells * points_per_cell(element);
     coupled = element.coupled_nodes;

@@ -9,6 +9,8 @@
 #include <array>
 #include <span>
 
+#include "core/enum_table.h"
+
 namespace kerf {
 
 enum class ElementType { tet4, tet10, tri3, tri6 };
@@ -61,16 +63,10 @@ inline constexpr std::array<ElementDescriptor, 4> element_types{{
      element_detail::tri_facets, 2, 3, 2, 14.0},
 }};
 
-constexpr const ElementDescriptor& element_descriptor(ElementType type) {
-  return element_types[static_cast<std::size_t>(type)];
-}
+static_assert(rows_follow_enum(element_types, &ElementDescriptor::type),
+              "element_types: one row per ElementType, in its order");
 
-constexpr bool rows_in_enum_order() {
-  for (std::size_t i = 0; i < element_types.size(); ++i)
-    if (static_cast<std::size_t>(element_types[i].type) != i) return false;
-  return true;
-}
-static_assert(rows_in_enum_order(), "element_types: one row per ElementType, in its order");
+constexpr const ElementDescriptor& element_descriptor(ElementType type) { return row_of(element_types, type); }
 
 /// The simplex of `dimension` (2, 3) and `order` (1, 2): what a mesh of that kind holds.
 constexpr const ElementDescriptor& element_descriptor(int dimension, int order) {

@@ -7,6 +7,8 @@
 // solvers/linear_solver_factory.cpp beside its own file.
 #include <array>
 
+#include "core/enum_table.h"
+
 namespace kerf {
 
 enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
@@ -26,15 +28,9 @@ inline constexpr std::array<LinearBackend, 4> linear_backends{{
     {LinearSolverKind::ldlt, "ldlt", true, false, ""},
 }};
 
-constexpr bool backends_in_enum_order() {
-  for (std::size_t i = 0; i < linear_backends.size(); ++i)
-    if (static_cast<std::size_t>(linear_backends[i].kind) != i) return false;
-  return true;
-}
-static_assert(backends_in_enum_order(), "linear_backends: one row per LinearSolverKind, in its order");
+static_assert(rows_follow_enum(linear_backends, &LinearBackend::kind),
+              "linear_backends: one row per LinearSolverKind, in its order");
 
-constexpr const LinearBackend& linear_backend(LinearSolverKind kind) {
-  return linear_backends[static_cast<std::size_t>(kind)];
-}
+constexpr const LinearBackend& linear_backend(LinearSolverKind kind) { return row_of(linear_backends, kind); }
 
 }  // namespace kerf

@@ -1,8 +1,6 @@
 #include "discretization/body_factory.h"
 
-
 #include "core/check.h"
-#include "problem/body_plan.h"
 #include "discretization/fem/fem_body.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
@@ -12,6 +10,7 @@
 #include "geometry/mesh_from_first_rank.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/msh_reader.h"
+#include "problem/body_plan.h"
 
 namespace kerf {
 namespace {

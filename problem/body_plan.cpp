@@ -10,34 +10,24 @@ bool has_boundary_loads(const Scene& scene) {
                      [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
 }
 
-void plan_meshless(const Scene& scene, BodyPlan& plan) {
-  const DiscretizationOptions& d = scene.discretization;
-  const MeshlessOptions& o = d.meshless;
-  plan.nodes_on_mesh = o.nodes == NodePlacement::mesh || !scene.box;
-  if (plan.nodes_on_mesh) {
-    // The element's mesh at FEM's size; the body keeps its corners.
-    plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
-    plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
-    return;
-  }
-  const bool needs_cells = plan.method->integration == Integration::background_cells || has_boundary_loads(scene) ||
-                           !scene.contact.empty();
-  if (needs_cells) plan.mesh = {true, 1, o.spacing};
-  plan.size_key = "discretization.meshless.spacing", plan.size = o.spacing;
-}
-
 }  // namespace
 
 BodyPlan body_plan(const Scene& scene) {
   const DiscretizationOptions& d = scene.discretization;
   BodyPlan plan;
   plan.method = &method_descriptor(d.method);
-  if (plan.method->meshless) {
-    plan_meshless(scene, plan);
+  plan.nodes_on_mesh = plan.method->meshless && (d.meshless.nodes == NodePlacement::mesh || !scene.box);
+  if (!plan.method->meshless || plan.nodes_on_mesh) {
+    // The element's mesh at FEM's size: FEM's cells, or the meshless nodes at its corners.
+    plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
+    plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
     return plan;
   }
-  plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
-  plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
+  // A lattice of nodes; linear background cells where EFG integrates, loads act or spheres touch.
+  const bool needs_cells = plan.method->integration == Integration::background_cells || has_boundary_loads(scene) ||
+                           !scene.contact.empty();
+  if (needs_cells) plan.mesh = {true, 1, d.meshless.spacing};
+  plan.size_key = "discretization.meshless.spacing", plan.size = d.meshless.spacing;
   return plan;
 }
 

@@ -7,7 +7,8 @@
 // a scene's body is built from); a new method is a row here, a case in
 // discretization/body_factory.cpp and its body's own files.
 #include <array>
-#include <cstddef>
+
+#include "core/enum_table.h"
 
 namespace kerf {
 
@@ -41,15 +42,8 @@ inline constexpr std::array<MethodDescriptor, 3> methods{{
     {Method::nodal, "nodal", true, Integration::at_nodes, EssentialMethod::parameters, false},
 }};
 
-constexpr bool methods_in_enum_order() {
-  for (std::size_t i = 0; i < methods.size(); ++i)
-    if (static_cast<std::size_t>(methods[i].method) != i) return false;
-  return true;
-}
-static_assert(methods_in_enum_order(), "methods: one row per Method, in its order");
+static_assert(rows_follow_enum(methods, &MethodDescriptor::method), "methods: one row per Method, in its order");
 
-constexpr const MethodDescriptor& method_descriptor(Method method) {
-  return methods[static_cast<std::size_t>(method)];
-}
+constexpr const MethodDescriptor& method_descriptor(Method method) { return row_of(methods, method); }
 
 }  // namespace kerf

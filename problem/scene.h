@@ -2,7 +2,6 @@
 // The parsed, validated scene: every key of SCENES.md with its default filled in.
 // Units are SI (m, kg, s, Pa, N). In 2D (plane strain) vectors keep z = 0.
 #include <array>
-#include <tuple>
 #include <map>
 #include <algorithm>
 #include <optional>
@@ -268,14 +267,7 @@ KERF_ENUM_NAMES(FemCut, "remesh", "remove", "split");
 KERF_ENUM_NAMES(SplitFront, "lag", "over", "subdivide");
 KERF_ENUM_NAMES(ProbeField, "displacement", "reaction", "indentation", "contact_force", "energy");
 #undef KERF_ENUM_NAMES
-/// The spellings of a kind described by a table (problem/methods.h, core/element_types.h,
-/// core/linear_backends.h): each row's name, in the enum's order.
-template <class Table>
-constexpr auto names_of(const Table& rows) {
-  std::array<const char*, std::tuple_size_v<Table>> spelled{};
-  for (std::size_t i = 0; i < rows.size(); ++i) spelled[i] = rows[i].name;
-  return spelled;
-}
+/// The spellings of the kinds described by a table (core/enum_table.h's names_of).
 template <>
 struct EnumNames<Method> {
   static constexpr auto names = names_of(methods);

@@ -27,7 +27,7 @@ MechanicalSystem::MechanicalSystem(DiscreteBody& body, const Scene& scene, RunRe
 void MechanicalSystem::share_rows() {
   const int dim = dofs_per_node();
   const PartitionedAssembly* part = capability<PartitionedAssembly>(body_);
-  const RankShare ranks = ranks_;
+  const RankShare& ranks = ranks_;
   if (part && part->partitioned()) {
     // Rows: the body's own nodes; the spheres' (after the body's) the last rank's.
     share_.owned_begin = dim * part->owned_nodes().first;
