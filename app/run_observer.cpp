@@ -56,8 +56,10 @@ void RunObserver::write(const RunParts& run, const SolverState& state, std::size
     run.body->snapshot(u, body);
     std::vector<LatticeSnapshot> lattices;
     const bool grids_changed = growths != lattices_written_at_;
+    // Every rank: the cut's displacements ask the body where its points are,
+    // a collective call when the mesh is divided among the ranks.
+    cut_snapshot(*cuts_, state.t, *run.body, u, cut);
     if (writes_files_) {  // the other ranks write only their piece of the body
-      cut_snapshot(*cuts_, state.t, *run.body, u, cut);
       if (const auto* grids = capability<EnrichmentLattices>(*run.body); grids && grids_changed)
         lattices = grids->enrichment_lattices();
     }

@@ -13,6 +13,7 @@
 #include "problem/scene_json.h"
 #include "problem/scene_reader.h"
 #include "solvers/petsc_session.h"
+#include "solvers/rank_messages.h"
 #include "solvers/rank_sum.h"
 #include "studies/study.h"
 
@@ -148,7 +149,7 @@ int run_command_line(const std::vector<std::string>& args) {
     options.force = a.force;
     // Under mpirun every rank runs the scene; rank 0 alone prints and writes (but the series' pieces).
     options.quiet = a.quiet || ranks.rank != 0;
-    options.mpi = {ranks, ranks.distributed() ? &send_from_first_rank : nullptr};
+    options.mpi = petsc_mpi_context(ranks);
     RunOutcome outcome = run_scene(scene, options);
     if (!options.quiet) {
       for (const std::string& note : outcome.report.notes) std::cerr << "kerf: note: " << note << "\n";

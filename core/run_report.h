@@ -33,6 +33,7 @@ struct MemoryMarks {
 struct RankCounts {
   int ranks = 1;
   bool partitioned = false;  // each rank assembled its own cells (else every rank the whole)
+  bool mesh_divided = false; // each rank held its piece of the mesh (else every rank the whole mesh)
   Index owned_rows = 0;      // rank 0's rows
   Index touched_rows = 0;    // rows rank 0 computes values in: its own and its ghosts'
   MemoryMarks memory;                       // this rank's (the summary: rank 0's)

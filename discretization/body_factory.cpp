@@ -2,6 +2,7 @@
 
 #include "core/check.h"
 #include "discretization/fem/fem_body.h"
+#include "discretization/fem/fem_piece_body.h"
 #include "discretization/meshless/efg_body.h"
 #include "discretization/meshless/nodal_body.h"
 #include "geometry/box_mesher.h"
@@ -16,37 +17,34 @@ namespace kerf {
 namespace {
 
 /// The mesh of the scene's box (gmsh at `size`, of cells of `order`,
-/// conforming to and opened along `cuts`), or its mesh file as it stands.
-/// Made on rank 0 alone under mpirun.
-Mesh make_mesh(const MpiContext& mpi, const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
-  return mesh_from_first_rank(mpi, [&] {
-    if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
-    BoxMeshRequest request;
-    request.cuts = std::move(cuts);
-    request.dimension = scene.dimension;
-    request.order = order;
-    request.min = scene.box->min;
-    request.max = scene.box->max;
-    request.size = size;
-    for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
-    return mesh_box(request);
-  });
+/// conforming to and opened along `cuts`), or its mesh file as it stands,
+/// made by this process.
+Mesh scene_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
+  if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
+  BoxMeshRequest request;
+  request.cuts = std::move(cuts);
+  request.dimension = scene.dimension;
+  request.order = order;
+  request.min = scene.box->min;
+  request.max = scene.box->max;
+  request.size = size;
+  for (const RefineRegion& r : scene.discretization.refine) request.refine.push_back({r.box.min, r.box.max, r.size});
+  return mesh_box(request);
 }
 
-/// FEM's mesh: its cells are of the element the scene asks, never silently
-/// another. A linear mesh file asked for quadratic cells is raised by gmsh
-/// (mid-edge nodes on its straight edges); a quadratic one asked for linear
-/// cells keeps its corners (edges straightened). Either is said in the notes.
-Mesh make_fem_mesh(const MpiContext& mpi, const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
+/// FEM's mesh, made by this process: its cells are of the element the scene
+/// asks, never silently another. A linear mesh file asked for quadratic
+/// cells is raised by gmsh (mid-edge nodes on its straight edges); a
+/// quadratic one asked for linear cells keeps its corners (edges
+/// straightened). Either is said in the notes.
+Mesh fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
   const ElementType element = scene.discretization.fem.element;
   const MeshPlan plan = body_plan(scene).mesh;
   const int order = plan.order;
-  if (scene.box) return make_mesh(mpi, scene, order, plan.size, std::move(cuts));
+  if (scene.box) return scene_mesh(scene, order, plan.size, std::move(cuts));
   int file_order = order;
-  Mesh mesh = mesh_from_first_rank(mpi, [&] {
-    return read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
-                    &file_order);
-  });
+  Mesh mesh = read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
+                       &file_order);
   const std::string asked = std::string("discretization.fem.element: ") + to_string(element) + " on the mesh file " +
                             scene.mesh_file + ", which holds " + (file_order == 1 ? "linear" : "quadratic") +
                             " cells: ";
@@ -68,12 +66,41 @@ RankShare rank_share(const MpiContext& mpi, const Scene& scene, const CutTimelin
   return rebuilt ? RankShare{} : mpi.ranks;
 }
 
+/// Whether a FEM body's mesh is divided among the ranks, each holding its
+/// piece: under mpirun, unless the body needs what a piece cannot give yet
+/// (cells split by a cut, a cut that meshes the body anew as it grows,
+/// nodal stars of averaged pressure, boundary samples for contact), which
+/// keep the whole mesh on every rank.
+bool divides_mesh(const MpiContext& mpi, const Scene& scene, const CutTimeline& cuts, double time) {
+  return mpi.distributed() && rank_share(mpi, scene, cuts).distributed() &&
+         cuts.fem_pieces(FemCut::split, time).empty() &&
+         scene.discretization.fem.volumetric != FemVolumetric::averaged_nodal && scene.contact.empty();
+}
+
+/// A FEM body on this rank's piece of the scene's mesh, made and divided on
+/// rank 0 (cells a cut removes are removed there first).
+std::unique_ptr<DiscreteBody> make_fem_piece_body(const MpiContext& mpi, const Scene& scene, const CutTimeline& cuts,
+                                                  double time, RunReport& report) {
+  const std::vector<CutPiece> removed = cuts.fem_pieces(FemCut::remove, time);
+  MeshPiece piece = mesh_piece_from_first_rank(mpi, [&] {
+    Mesh mesh = fem_mesh(scene, cuts.fem_pieces(FemCut::remesh, time), report);
+    if (!removed.empty()) report.cuts.removed_cells += remove_crossed_cells(mesh, removed);
+    order_for_locality(mesh);
+    return mesh;
+  });
+  report.add_stage("mesh");
+  if (!removed.empty()) report.add_stage("cut cells removed");
+  report.add_stage("mesh divided");
+  report.parallel.mesh_divided = true;
+  return std::make_unique<FemPieceBody>(scene, std::move(piece), mpi);
+}
+
 std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Scene& scene, SharedCuts cuts,
                                                  RunReport& report) {
   const BodyPlan plan = body_plan(scene);
   std::optional<Mesh> background;
   if (plan.mesh.made) {
-    background = corner_mesh(make_mesh(mpi, scene, plan.mesh.order, plan.mesh.size));
+    background = corner_mesh(mesh_from_first_rank(mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
     order_for_locality(*background);
     report.add_stage("mesh");
   }
@@ -103,7 +130,9 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
-  Mesh mesh = make_fem_mesh(mpi, scene, cuts->fem_pieces(FemCut::remesh, time), report);
+  if (divides_mesh(mpi, scene, *cuts, time)) return make_fem_piece_body(mpi, scene, *cuts, time, report);
+  // Made on rank 0 alone under mpirun (its notes are rank 0's: it writes the summary).
+  Mesh mesh = mesh_from_first_rank(mpi, [&] { return fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report); });
   report.add_stage("mesh");
   if (!removed.empty()) {
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);

@@ -26,6 +26,9 @@ struct BodySnapshot {
   std::vector<std::uint8_t> cell_types;  // VTK cell type ids
   std::vector<OutputField> point_fields;
   std::vector<OutputField> cell_fields;
+  /// This rank's piece of a body whose mesh is divided among the ranks (its
+  /// own cells alone), written as it is; false: the whole body.
+  bool piece = false;
 };
 
 /// A scalar field on a lattice (an Enrichment Grid's phi), for a .vti file.

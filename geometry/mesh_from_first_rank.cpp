@@ -1,5 +1,7 @@
 #include "geometry/mesh_from_first_rank.h"
 
+#include <malloc.h>
+
 #include "core/check.h"
 #include "core/mpi_context.h"
 
@@ -40,6 +42,33 @@ Mesh mesh_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& ma
     return mesh;
   }
   return mesh_from_numbers(mpi.from_first_rank({}));
+}
+
+MeshPiece mesh_piece_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& make) {
+  if (!mpi.distributed()) {
+    Mesh mesh = make();
+    return divide_mesh(mesh, std::vector<int>(mesh.cell_count(), 0), 1).front();
+  }
+  KERF_CHECK(mpi.partition && mpi.send_parts, "internal: a mesh divided among ranks without a partitioner");
+  std::vector<std::vector<double>> numbers;
+  if (mpi.ranks.rank == 0) {
+    std::vector<MeshPiece> pieces;
+    {
+      const Mesh mesh = make();
+      const CellGraph graph = cell_face_graph(mesh);
+      const std::vector<int> parts = mpi.partition(graph.offsets, graph.neighbours, mpi.ranks.count);
+      pieces = divide_mesh(mesh, parts, mpi.ranks.count);
+    }
+    for (MeshPiece& piece : pieces) {
+      numbers.push_back(piece_to_numbers(piece));
+      piece = MeshPiece{};
+    }
+  }
+  MeshPiece mine = piece_from_numbers(mpi.part_from_first_rank(std::move(numbers)));
+  // The whole mesh was many small blocks: give them back to the system, or
+  // rank 0 would keep the whole mesh's memory in its footprint.
+  if (mpi.ranks.rank == 0) malloc_trim(0);
+  return mine;
 }
 
 }  // namespace kerf

@@ -7,6 +7,7 @@
 
 #include "core/mpi_context.h"
 #include "geometry/mesh.h"
+#include "geometry/mesh_division.h"
 
 namespace kerf {
 
@@ -15,6 +16,12 @@ namespace kerf {
 /// serial run. When make() throws on rank 0, the others wait in the call
 /// until the job is stopped (the command line stops every rank).
 Mesh mesh_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& make);
+
+/// make() on rank 0 alone, its cells divided among the ranks by the
+/// context's partitioner on their face graph (geometry/mesh_division.h);
+/// each rank returns its piece, and rank 0 keeps nothing else of the mesh. A
+/// collective call under mpirun; serial: the whole mesh as one piece.
+MeshPiece mesh_piece_from_first_rank(const MpiContext& mpi, const std::function<Mesh()>& make);
 
 /// The mesh as the numbers that go between ranks, and back.
 std::vector<double> mesh_to_numbers(const Mesh& mesh);

@@ -121,7 +121,10 @@ std::string VtkSeries::write_pieces(const BodySnapshot& snapshot, std::size_t st
     std::snprintf(ending, sizeof ending, "_%d.vtu", rank);
     return file_name("", step, ending);
   };
-  const auto cells = even_part(static_cast<Index>(snapshot.cell_types.size()), ranks_.rank, ranks_.count);
+  // The whole body on every rank: each writes its share of the cells.
+  const Index cell_count = static_cast<Index>(snapshot.cell_types.size());
+  const auto cells =
+      snapshot.piece ? std::pair<Index, Index>(0, cell_count) : even_part(cell_count, ranks_.rank, ranks_.count);
   const BodySnapshot piece = snapshot_piece(snapshot, cells, ranks_.rank);
   write_vtu(piece, directory_ + "/" + piece_name(ranks_.rank));
   wait_for_every_rank_();  // the .pvtu names only pieces that are on disk

@@ -147,7 +147,7 @@ class CentralDifferenceStepper final : public Stepper {
       if (ranks) ranks->sum(y);
     };
     const EigenvalueBound omega2 =
-        largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_));
+        largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_), lanczos_options());
     mode_ = omega2.ritz_vector;
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
     const double step = damped_critical_step(std::max(lanczos_step, element_bound.value_or(0.0)), beta_);
@@ -172,13 +172,27 @@ class CentralDifferenceStepper final : public Stepper {
       mechanics_.internal_force(scaled, y);  // summed over the ranks of a partitioned body
       y /= e;
     };
-    LanczosOptions options;
+    LanczosOptions options = lanczos_options();
     options.tolerance = reestimate_tolerance_;
     options.start = &mode_;
     const EigenvalueBound omega2 =
         largest_eigenvalue(stiffness_times, mass_, FreeDofs(mechanics_.dof_count(), constrained_), options);
     mode_ = omega2.ritz_vector;
     return damped_critical_step(2.0 / std::sqrt(omega2.upper_bound), beta_);
+  }
+
+  /// Lanczos started from a vector fixed by the dofs' positions, not their
+  /// numbers: a mesh divided among ranks numbers the nodes otherwise, and
+  /// the estimate must not move with it.
+  LanczosOptions lanczos_options() const {
+    LanczosOptions options;
+    options.start_entry = [this](Index dof) {
+      const int dim = mechanics_.dofs_per_node();
+      const double s = std::sin(mechanics_.dof_position(dof).dot(Vec3(12.9898e3, 78.233e3, 37.719e3)) +
+                                1.618 * (dof % dim)) * 43758.5453;
+      return 2.0 * (s - std::floor(s)) - 1.0;  // in [-1, 1): as rough as a random vector
+    };
+    return options;
   }
 
   /// 1e-7 of the body's bounding-box diagonal (m): the largest displacement a

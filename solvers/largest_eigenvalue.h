@@ -18,6 +18,10 @@ struct LanczosOptions {
   int max_iterations = 80;
   double tolerance = 1e-6;       // stop when the Ritz value's residual is below this times the value
   const Vector* start = nullptr;  // over the free dofs (a previous ritz_vector); random when null
+  /// The random start's entry at a dof; std::rand's when empty. A value
+  /// fixed by the dof itself (its position) keeps the estimate independent
+  /// of the dofs' numbering, which a mesh divided among ranks changes.
+  std::function<double(Index dof)> start_entry;
 };
 
 /// y = K x for x over all dofs (a partitioned body's parts added across ranks).

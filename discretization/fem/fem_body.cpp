@@ -65,9 +65,13 @@ std::optional<FrontRefinement> front_refinement(const Scene& scene, const Mesh& 
 FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along)
     : FemBody(Ordered{}, scene, ordered_for_locality(std::move(mesh)), share, split_along) {}
 
+FemBody::FemBody(const Scene& scene, Mesh mesh, FemPiece piece)
+    : FemBody(Ordered{}, scene, std::move(mesh), RankShare{}, {}, nullptr, std::move(piece)) {}
+
 FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
-                 const FemBody* previous)
-    : front_(front_refinement(scene, mesh, split_along)),
+                 const FemBody* previous, std::optional<FemPiece> piece)
+    : piece_(std::move(piece)),
+      front_(front_refinement(scene, mesh, split_along)),
       original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
       split_(split_along.empty() ? std::nullopt
                                  : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
@@ -86,7 +90,7 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
   }
   share_cells(share);
   auto box = bounding_box(mesh_);
-  domain_size_ = (box[1] - box[0]).norm();
+  domain_size_ = piece_ ? piece_->domain_size : (box[1] - box[0]).norm();
   npc_ = mesh_.nodes_per_cell();
   mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
   const QuadratureRule rule = simplex_quadrature(dim, element_descriptor(dim, mesh_.order).stiffness_degree);
@@ -98,7 +102,7 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
 
 void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previous) {
   const int dim = mesh_.dimension;
-  const Index C = mesh_.cell_count();
+  const Index C = kept_cells();
   point_start_.assign(1, 0);
   grad_.reserve(static_cast<std::size_t>(C) * rule.points.size() * npc_ * dim);
   wdet_.reserve(static_cast<std::size_t>(C) * rule.points.size());
@@ -245,6 +249,10 @@ void FemBody::share_cells(RankShare share) {
   share_ = share;
   std::tie(cell_begin_, cell_end_) = even_part(mesh_.cell_count(), share.rank, share.count);
   owned_nodes_ = even_part(mesh_.node_count(), share.rank, share.count);
+  if (piece_) {
+    std::tie(cell_begin_, cell_end_) = std::pair<Index, Index>(0, piece_->own_cells);
+    owned_nodes_ = {0, piece_->own_nodes};
+  }
   schedule_ = schedule_cells(mesh_, omp_get_max_threads(), cell_begin_, cell_end_);
   // Its own nodes (their rows take the whole lumped mass) and its cells'.
   std::vector<char> reached(mesh_.node_count(), 0);
@@ -509,6 +517,8 @@ double FemBody::mean_neighbors() const {
 void FemBody::visit_couplings(const CouplingVisitor& visit) const {
   const int dim = mesh_.dimension;
   std::vector<Index> dofs(npc_ * dim);
+  // Every cell, a piece's ghosts too: a row a rank owns is then whole, as
+  // PETSc's preallocation of the summed matrix needs.
   for (Index c = 0; c < mesh_.cell_count(); ++c) {
     auto nodes = mesh_.cell(c);
     for (int a = 0; a < npc_; ++a)
@@ -639,6 +649,7 @@ void FemBody::build_loads(const Scene& scene) {
   const int fdim = dim - 1, nf = facets_.nodes_per_facet;
   QuadratureRule rule = simplex_quadrature(fdim, order + 1);
   std::vector<double> N(nf), dN(nf * std::max(fdim, 1));
+  loaded_faces_.assign(scene.boundary.size(), 0);
   for (const BoundaryCondition& bc : scene.boundary) {
     if (bc.is_dirichlet()) continue;
     std::vector<char> selected(mesh_.nodes.size(), 0);
@@ -649,6 +660,7 @@ void FemBody::build_loads(const Scene& scene) {
       const auto facet = facets_.facet(fi);
       if (!std::all_of(facet.begin(), facet.end(), [&](Index n) { return selected[n]; })) continue;
       ++loaded;
+      if (facets_.cell[fi] < kept_cells()) ++loaded_faces_[&bc - scene.boundary.data()];
       // Its cell's copy's nodes (fem: split; a cell the cut separates has two).
       const auto [first, last] = copies_of(facets_.cell[fi]);
       KERF_CHECK(last - first == 1 && (!split_ || split_->whole(first)), bc.select.where.describe(),
@@ -671,7 +683,7 @@ void FemBody::build_loads(const Scene& scene) {
           for (int i = 0; i < dim; ++i) load_[dim * fn[a] + i] += rule.weights[q] * N[a] * traction[i];
       }
     }
-    KERF_CHECK(loaded > 0, bc.select.where.describe(),
+    KERF_CHECK(piece_ || loaded > 0, bc.select.where.describe(),
                ": the selection holds boundary points but no whole boundary face, so the load has "
                "nowhere to act; expected a plane or box covering at least one face");
   }
@@ -741,6 +753,7 @@ double FemBody::critical_time_step() const {
 }
 
 std::vector<Index> FemBody::select_nodes(const Selection& selection) const {
+  if (piece_) return piece_->select(selection);
   std::vector<Index> chosen = select_points(selection, outline().nodes, on_boundary_, domain_size_);
   if (!split_) return chosen;
   // The copies of a chosen node on its own side (a phantom only extends a copy's field).
@@ -776,8 +789,9 @@ std::optional<PointInterpolation> FemBody::interpolation_at(const Vec3& x) const
 void FemBody::snapshot(const Vector& u, BodySnapshot& out) const {
   const int dim = mesh_.dimension;
   const ElementDescriptor& element = element_descriptor(dim, mesh_.order);
-  const Index C = mesh_.cell_count();
+  const Index C = kept_cells();
   out = BodySnapshot{};
+  out.piece = piece_.has_value();
   out.points = mesh_.nodes;
   out.connectivity.reserve(mesh_.cells.size());
   OutputField displacement{"displacement", 3, std::vector<double>(3 * mesh_.nodes.size(), 0.0)};
@@ -828,8 +842,8 @@ std::vector<Mat3> FemBody::cell_stresses(const Vector& u) const {
   BulkAverages& averages = bulk_state_;  // with the bulk term at the nodes, a cell's stress takes their mean
   if (bulk_average_)
     dispatch_cell(dim, mesh_.order, [&]<int Dim, int Npc>() { bulk_averages<Dim, Npc>(u, averages); });
-  std::vector<Mat3> out(mesh_.cell_count(), Mat3::Zero());
-  for (Index c = 0; c < mesh_.cell_count(); ++c) {
+  std::vector<Mat3> out(kept_cells(), Mat3::Zero());
+  for (Index c = 0; c < kept_cells(); ++c) {
     auto nodes = mesh_.cell(c);
     const Index first = point_start_[c], points = point_start_[c + 1] - first;
     for (Index q = first; q < first + points; ++q) {

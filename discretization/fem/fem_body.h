@@ -4,6 +4,8 @@
 // Shape-function gradients and quadrature weights are computed once. Linear
 // cells may hold the law's bulk term at the nodes (fem.volumetric:
 // averaged_nodal, nodal_bulk_average.h), which couples each node's star.
+#include <functional>
+#include <optional>
 #include <vector>
 
 #include "core/rank_share.h"
@@ -21,6 +23,16 @@
 
 namespace kerf {
 
+/// One rank's piece of a mesh divided among the ranks (geometry/mesh_division.h),
+/// as a FemBody on it sees it: its own cells and nodes come first.
+struct FemPiece {
+  Index own_cells = 0;  // cells [0, own_cells) are assembled here; the others are ghosts
+  Index own_nodes = 0;  // nodes [0, own_nodes) are this rank's rows
+  double domain_size = 0.0;  // the whole body's bounding-box diagonal (m)
+  /// The whole run's selection as this piece's nodes (a collective call).
+  std::function<std::vector<Index>(const Selection&)> select;
+};
+
 class FemBody final : public DiscreteBody,
                       public SurfaceSampling,
                       public ElementStepBound,
@@ -36,6 +48,17 @@ class FemBody final : public DiscreteBody,
   /// replaced by one copy per side (geometry/cell_split.h), each integrating
   /// its fragment; loads, selections and probes are taken on the mesh as read.
   FemBody(const Scene& scene, Mesh mesh, RankShare share = {}, std::span<const CutPiece> split_along = {});
+  /// On one rank's piece of a divided mesh (its nodes and cells in the
+  /// piece's order): assembles, integrates gravity into the mass and
+  /// writes its own cells alone; loads and constraints act on every node of
+  /// the piece (an own node's are then complete: every cell around it is in
+  /// the piece), the nodes taken by `piece.select`. No selection or load is
+  /// refused here for taking nothing: the whole run decides (loaded_faces).
+  FemBody(const Scene& scene, Mesh mesh, FemPiece piece);
+
+  /// On a piece: per boundary condition of the scene, the boundary faces of
+  /// own cells its traction or pressure acts on (0 for the others).
+  const std::vector<Index>& loaded_faces() const { return loaded_faces_; }
 
   /// The split (fem: split), or null.
   const CellSplit* split() const { return split_ ? &*split_ : nullptr; }
@@ -85,7 +108,10 @@ class FemBody final : public DiscreteBody,
   /// taken instead of built again (a growing cut's next split; not with
   /// split_front: subdivide, whose outline changes).
   FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
-          const FemBody* previous = nullptr);
+          const FemBody* previous = nullptr, std::optional<FemPiece> piece = std::nullopt);
+  /// The cells this body assembles and writes: its own on a piece, else all
+  /// (a partitioned whole mesh's rank assembles its range of them).
+  Index kept_cells() const { return piece_ ? piece_->own_cells : mesh_.cell_count(); }
   /// Receives each element's stiffness block with the element's index; thread-safe per element.
   using ElementSink = std::function<void(Index cell, std::span<const Index> dofs, std::span<const double> values)>;
   /// The bulk measure's state for one displacement: each cell's own m_e and
@@ -150,6 +176,8 @@ class FemBody final : public DiscreteBody,
   /// This rank's cells, rows and touched nodes; the whole mesh on one rank.
   void share_cells(RankShare share);
 
+  std::optional<FemPiece> piece_;         // on a piece of a divided mesh
+  std::vector<Index> loaded_faces_;       // on a piece: per boundary condition
   std::optional<FrontRefinement> front_;  // split_front: subdivide: the given mesh's refinement
   Mesh original_;                    // fem: split: the mesh as read, or as refined along the front (else moved into mesh_)
   std::optional<CellSplit> split_;   // fem: split: the copies' parents, fragments, node origins

@@ -2,7 +2,8 @@
 # A scene run under mpirun on 2 and 3 ranks gives the serial run's probes:
 # to TOLERANCE relative (1e-8 with a direct solve; the solver's tolerance
 # with CG), and says whether each rank assembled its own cells (PARTITIONED:
-# true or false). Its last ParaView step is a .pvtu whose pieces hold every
+# true or false; divided: its own cells of a mesh divided among the ranks,
+# each holding its piece). Its last ParaView step is a .pvtu whose pieces hold every
 # serial cell once with the serial displacements (PIECES_CHECK: the program
 # pieces_match_serial). usage:
 #   ranks_match_serial.sh KERF PIECES_CHECK OUT_DIR TOLERANCE PARTITIONED SCENE [--set KEY=VALUE]...
@@ -25,7 +26,8 @@ for ranks in 2 3; do
 import json, sys
 parallel = json.load(open(sys.argv[1]))["parallel"]
 print("parallel:", parallel)
-expected = {"ranks": int(sys.argv[2]), "partitioned": sys.argv[3] == "true"}
+expected = {"ranks": int(sys.argv[2]), "partitioned": sys.argv[3] in ("true", "divided"),
+            "mesh_divided": sys.argv[3] == "divided"}
 if any(parallel[key] != value for key, value in expected.items()):
     sys.exit(f"FAILED: the summary's parallel section says {parallel}, expected {expected}")
 CHECK

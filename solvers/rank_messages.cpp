@@ -1,0 +1,110 @@
+#include "solvers/rank_messages.h"
+
+#include <petscvec.h>
+
+#include <numeric>
+
+#include "core/check.h"
+#include "solvers/graph_partition.h"
+#include "solvers/petsc_session.h"
+
+namespace kerf {
+namespace {
+
+/// The entries of `v` this rank holds.
+std::vector<double> local_values(Vec v) {
+  PetscInt size = 0;
+  check_petsc(VecGetLocalSize(v, &size), "VecGetLocalSize");
+  const PetscScalar* values = nullptr;
+  check_petsc(VecGetArrayRead(v, &values), "VecGetArrayRead");
+  std::vector<double> out(values, values + size);
+  check_petsc(VecRestoreArrayRead(v, &values), "VecRestoreArrayRead");
+  return out;
+}
+
+PetscInt vector_length(std::size_t size) {
+  KERF_CHECK(size < static_cast<std::size_t>(PETSC_MAX_INT), "internal: ", size,
+             " values are too many to send in one PETSc vector");
+  return static_cast<PetscInt>(size);
+}
+
+/// Every rank's `mine` concatenated in rank order, on every rank.
+std::vector<double> concatenated(std::vector<double>& mine) {
+  Vec held = nullptr, all = nullptr;
+  VecScatter to_all = nullptr;
+  check_petsc(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, vector_length(mine.size()), PETSC_DETERMINE, mine.data(),
+                                    &held),
+              "VecCreateMPIWithArray");
+  check_petsc(VecScatterCreateToAll(held, &to_all, &all), "VecScatterCreateToAll");
+  check_petsc(VecScatterBegin(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check_petsc(VecScatterEnd(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  std::vector<double> out = local_values(all);
+  check_petsc(VecScatterDestroy(&to_all), "VecScatterDestroy");
+  check_petsc(VecDestroy(&all), "VecDestroy");
+  check_petsc(VecDestroy(&held), "VecDestroy");
+  return out;
+}
+
+}  // namespace
+
+std::vector<double> send_parts_from_first_rank(std::vector<std::vector<double>> parts) {
+  ensure_petsc_initialized();
+  PetscMPIInt rank = 0, size = 1;
+  check_petsc(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
+  check_petsc(MPI_Comm_size(PETSC_COMM_WORLD, &size), "MPI_Comm_size");
+  std::vector<double> lengths;  // rank 0's, then every rank's
+  std::vector<double> held_values;
+  if (rank == 0) {
+    KERF_CHECK(static_cast<int>(parts.size()) == size, "internal: ", parts.size(), " parts for ", size, " ranks");
+    for (const std::vector<double>& part : parts) {
+      lengths.push_back(static_cast<double>(part.size()));
+      held_values.insert(held_values.end(), part.begin(), part.end());
+    }
+    parts.clear();
+  }
+  lengths = send_from_first_rank(std::move(lengths));
+  Vec held = nullptr, mine = nullptr;
+  VecScatter to_owner = nullptr;
+  check_petsc(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, vector_length(held_values.size()), PETSC_DETERMINE,
+                                    held_values.data(), &held),
+              "VecCreateMPIWithArray");
+  check_petsc(VecCreateMPI(PETSC_COMM_WORLD, static_cast<PetscInt>(lengths[rank]), PETSC_DETERMINE, &mine),
+              "VecCreateMPI");
+  // Entry i of rank 0's vector to entry i of the other: both number the lists
+  // end to end, and each rank asks for its own list's entries.
+  PetscInt first = 0, end = 0;
+  check_petsc(VecGetOwnershipRange(mine, &first, &end), "VecGetOwnershipRange");
+  IS entries = nullptr;
+  check_petsc(ISCreateStride(PETSC_COMM_WORLD, end - first, first, 1, &entries), "ISCreateStride");
+  check_petsc(VecScatterCreate(held, entries, mine, entries, &to_owner), "VecScatterCreate");
+  check_petsc(ISDestroy(&entries), "ISDestroy");
+  check_petsc(VecScatterBegin(to_owner, held, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check_petsc(VecScatterEnd(to_owner, held, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  std::vector<double> out = local_values(mine);
+  check_petsc(VecScatterDestroy(&to_owner), "VecScatterDestroy");
+  check_petsc(VecDestroy(&mine), "VecDestroy");
+  check_petsc(VecDestroy(&held), "VecDestroy");
+  return out;
+}
+
+std::vector<std::vector<double>> gather_from_every_rank(std::vector<double> mine) {
+  ensure_petsc_initialized();
+  std::vector<double> length{static_cast<double>(mine.size())};
+  const std::vector<double> lengths = concatenated(length);
+  const std::vector<double> all = concatenated(mine);
+  std::vector<std::vector<double>> out;
+  std::size_t at = 0;
+  for (double n : lengths) {
+    out.emplace_back(all.begin() + at, all.begin() + at + static_cast<std::size_t>(n));
+    at += static_cast<std::size_t>(n);
+  }
+  return out;
+}
+
+MpiContext petsc_mpi_context(RankShare ranks) {
+  if (!ranks.distributed()) return MpiContext{ranks};
+  return MpiContext{ranks, &send_from_first_rank, &send_parts_from_first_rank, &gather_from_every_rank,
+                    &ptscotch_parts};
+}
+
+}  // namespace kerf
