@@ -26,6 +26,10 @@ constexpr double gmsh_bytes_per_cell = 1500.0;   // gmsh's own structures while 
 constexpr double shape_table_copies = 3.3;       // tables at points, nodes and boundary points, neighbour lists
 constexpr double smoothed_bytes_per_node = 45e3; // smoothing-cell samples and their shape functions
 constexpr double matrix_copies = 3.0;            // the pattern's indices, the full and the free-dof values
+// A rank's share of the matrix and its algebraic multigrid, over 1/ranks of
+// one rank's: 1.57, 1.62, 1.59 at 2, 3, 4 ranks (the 513k-dof static tet10
+// block, its mesh divided, PETSc's GAMG defaults; results/scaling.md).
+constexpr double parallel_matrix_overhead = 1.6;
 constexpr double factor_fill_3d = 0.17;          // nnz(L) / nnz(K) per dofs^(1/3) (nested dissection)
 constexpr double factor_fill_2d = 0.4;           // nnz(L) / nnz(K) per log2(dofs)
 
@@ -261,25 +265,51 @@ int written_steps(const Scene& scene) {
   return static_cast<int>(std::min(steps / scene.output.vtk_every, 1e9)) + 1;
 }
 
-double memory_mb(const Scene& scene, const ResourceEstimate& e) {
+/// The run's memory beyond the process's base (MB), by how the MPI ranks hold it.
+struct MemoryParts {
+  double meshing = 0.0;  // gmsh's structures while it meshes (rank 0's alone under mpirun)
+  double mesh = 0.0;     // the mesh's arrays
+  double tables = 0.0;   // meshless shape tables and their kin, whole on every rank
+  double matrix = 0.0;   // the matrix's copies and its factor or preconditioner: the ranks share it
+  double whole = 0.0;    // the Enrichment Grids' columns; the state and work vectors: whole on every rank
+  double sum() const { return meshing + mesh + tables + matrix + whole; }
+};
+
+MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
   const int d = scene.dimension;
-  double bytes = gmsh_bytes_per_cell * e.mesh_cells + 8.0 * e.mesh_cells * (d + 1) * 2.0;
-  bytes += shape_table_copies * e.points * e.neighbors * (8.0 * (1 + d) + 8.0);
+  constexpr double mb = 1048576.0;
+  MemoryParts m;
+  m.meshing = gmsh_bytes_per_cell * e.mesh_cells / mb;
+  m.mesh = 8.0 * e.mesh_cells * (d + 1) * 2.0 / mb;
+  double tables = shape_table_copies * e.points * e.neighbors * (8.0 * (1 + d) + 8.0);
   if (scene.discretization.method == Method::nodal && scene.discretization.meshless.gradient == NodalGradient::smoothed)
-    bytes += smoothed_bytes_per_node * e.nodes;
+    tables += smoothed_bytes_per_node * e.nodes;
   // NSNI: d x d second derivatives a slot of the nodes' table, and d moments a node.
   if (scene.discretization.method == Method::nodal &&
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
-    bytes += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
-  bytes += matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros;
-  bytes += 64.0 * e.grid_points + 8.0 * 30.0 * e.dofs;  // the grid's columns; the state and work vectors
-  return base_mb + bytes / 1048576.0;
+    tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
+  m.tables = tables / mb;
+  m.matrix = (matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
+  m.whole = (64.0 * e.grid_points + 8.0 * 30.0 * e.dofs) / mb;  // the grid's columns; the state and work vectors
+  return m;
+}
+
+/// The largest rank's peak when `ranks` share the run. Rank 0 makes the mesh
+/// (gmsh) before any matrix exists. A divided mesh (body_plan) leaves each
+/// rank its piece; otherwise the mesh and tables are whole on every rank.
+/// Either way the ranks share the matrix, at parallel_matrix_overhead.
+double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
+  if (ranks <= 1) return base_mb + m.sum();
+  if (body_plan(scene).divided_among_ranks)
+    return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
+  return base_mb + std::max(m.meshing + m.mesh, m.mesh + m.tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
 }
 
 }  // namespace
 
-ResourceEstimate estimate_resources(const Scene& scene) {
+ResourceEstimate estimate_resources(const Scene& scene, int ranks) {
   ResourceEstimate e;
+  e.ranks = ranks;
   if (!scene.box) return e;  // a mesh file: its counts are in the file, not estimated here
   const int d = scene.dimension;
   double coupled = 0.0;
@@ -298,7 +328,9 @@ ResourceEstimate estimate_resources(const Scene& scene) {
   // cells with their arrays, about 50 bytes a cell.
   e.output_mb_per_step = (120.0 * e.nodes + 50.0 * e.mesh_cells) / 1048576.0;
   e.output_mb = e.output_mb_per_step * written_steps(scene);
-  e.memory_mb = memory_mb(scene, e);
+  const MemoryParts parts = memory_parts(scene, e);
+  e.memory_mb = base_mb + parts.sum();
+  e.memory_mb_per_rank = memory_mb_per_rank(scene, parts, ranks);
   return e;
 }
 
@@ -314,6 +346,7 @@ std::string describe(const ResourceEstimate& e) {
   if (e.grid_points > 0.0) out << ", Enrichment Grid points " << e.grid_points;
   out << "\n  output " << e.output_mb_per_step << " MB a written step, " << e.output_mb << " MB in all\n"
       << "  peak memory " << e.memory_mb << " MB (available now: " << available_memory_mb() << " MB)\n";
+  if (e.ranks > 1) out << "  on " << e.ranks << " MPI ranks: " << e.memory_mb_per_rank << " MB the largest rank\n";
   return out.str();
 }
 
@@ -322,14 +355,16 @@ nlohmann::ordered_json estimate_to_json(const ResourceEstimate& e) {
           {"mesh_nodes", e.mesh_nodes}, {"nodes", e.nodes},   {"dofs", e.dofs},
           {"points", e.points},      {"neighbors", e.neighbors}, {"nonzeros", e.nonzeros},
           {"factor_nonzeros", e.factor_nonzeros}, {"grid_points", e.grid_points},
-          {"output_mb_per_step", e.output_mb_per_step}, {"output_mb", e.output_mb}, {"memory_mb", e.memory_mb}};
+          {"output_mb_per_step", e.output_mb_per_step}, {"output_mb", e.output_mb}, {"memory_mb", e.memory_mb},
+          {"ranks", e.ranks}, {"memory_mb_per_rank", e.memory_mb_per_rank}};
 }
 
 double memory_limit_mb(const RankShare& ranks) {
+  // This machine's memory shared by the ranks it runs (Open MPI says how many).
   const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
   const int here = local ? std::max(1, std::atoi(local)) : ranks.count;
-  double limit = available_memory_mb() * std::max(1, ranks.count) / std::max(1, here);
-  // A user's own cap (a shared machine, a batch job's share).
+  double limit = available_memory_mb() / std::max(1, here);
+  // A user's own cap on each process (a shared machine, a batch job's share).
   if (const char* cap = std::getenv("KERF_MEMORY_LIMIT_MB")) {
     char* end = nullptr;
     const double mb = std::strtod(cap, &end);
@@ -363,14 +398,16 @@ void refuse_output_that_cannot_fit(const Scene& scene, const ResourceEstimate& e
 }
 
 void refuse_what_cannot_fit(const Scene& scene, const ResourceEstimate& e, double limit_mb) {
-  if (e.size_key.empty() || limit_mb <= 0.0 || e.memory_mb <= limit_mb) return;
+  if (e.size_key.empty() || limit_mb <= 0.0 || e.memory_mb_per_rank <= limit_mb) return;
   std::ostringstream why;
   why.precision(3);
   why << scene.locate(e.size_key).describe() << ": value " << e.size << " asks for about " << e.nodes << " nodes and "
-      << e.mesh_cells << " mesh cells, an estimated " << e.memory_mb << " MB of memory; the limit is "
-      << limit_mb << " MB (the memory available, or KERF_MEMORY_LIMIT_MB); expected a larger " << e.size_key
-      << " (memory grows as its inverse "
-      << (scene.dimension == 3 ? "cube" : "square") << "), or --force to run anyway";
+      << e.mesh_cells << " mesh cells, an estimated " << e.memory_mb_per_rank << " MB of memory"
+      << (e.ranks > 1 ? " on the largest of " + std::to_string(e.ranks) + " MPI ranks" : std::string())
+      << "; the limit is " << limit_mb
+      << " MB a process (the memory available to it, or KERF_MEMORY_LIMIT_MB); expected a larger " << e.size_key
+      << " (memory grows as its inverse " << (scene.dimension == 3 ? "cube" : "square") << "), "
+      << (e.ranks > 1 ? "more ranks, " : "") << "or --force to run anyway";
   throw Error(why.str());
 }
 

@@ -27,12 +27,15 @@ struct ResourceEstimate {
   double factor_nonzeros = 0.0;               // its Cholesky factor's, with a direct solver
   double grid_points = 0.0;                   // the Enrichment Grids'
   double output_mb_per_step = 0.0, output_mb = 0.0;  // the ParaView series
-  double memory_mb = 0.0;                     // peak resident memory of the whole run
+  double memory_mb = 0.0;                     // peak resident memory of the whole run on one process
+  int ranks = 1;                              // the MPI ranks it was estimated for
+  double memory_mb_per_rank = 0.0;            // the largest rank's peak among them (memory_mb on one)
   std::string size_key;                       // the key whose value sets the resolution
   double size = 0.0;                          // and that value
 };
 
-ResourceEstimate estimate_resources(const Scene& scene);
+/// For a run on `ranks` MPI ranks (the per-rank memory then follows how they share it).
+ResourceEstimate estimate_resources(const Scene& scene, int ranks = 1);
 
 /// The estimate as `kerf check` prints it, a line per figure.
 std::string describe(const ResourceEstimate& estimate);
@@ -43,16 +46,16 @@ nlohmann::ordered_json estimate_to_json(const ResourceEstimate& estimate);
 /// MemAvailable of /proc/meminfo (MB): what a run may take without swapping.
 double available_memory_mb();
 
-/// What the whole run may take: this machine's available memory, times the
-/// number of machines under mpirun (ranks / ranks on this machine), or the
-/// environment's KERF_MEMORY_LIMIT_MB when smaller.
+/// What one process of the run may take: this machine's available memory
+/// over the ranks it runs under mpirun, or the environment's
+/// KERF_MEMORY_LIMIT_MB (a cap on each process) when smaller.
 double memory_limit_mb(const RankShare& ranks);
 
 /// Throws naming output.vtk when the series would not fit on the disk holding `directory`.
 void refuse_output_that_cannot_fit(const Scene& scene, const ResourceEstimate& estimate, const std::string& directory);
 
 /// Throws naming the scene's file, the key and value that set the size, the
-/// estimated memory, the limit, and --force.
+/// estimated memory of the largest rank, the limit a process, and --force.
 void refuse_what_cannot_fit(const Scene& scene, const ResourceEstimate& estimate, double limit_mb);
 
 }  // namespace kerf

@@ -36,7 +36,7 @@ std::string summary_text(const json& summary) { return summary.dump(2, ' ', fals
 /// Puts the resource estimate in the summary and refuses a run that cannot fit (unless forced).
 ResourceEstimate estimate_and_guard(const Scene& scene, const RunOptions& options, const std::string& directory,
                                     json& summary) {
-  const ResourceEstimate estimate = estimate_resources(scene);
+  const ResourceEstimate estimate = estimate_resources(scene, options.mpi.ranks.count);
   summary["estimate"] = estimate_to_json(estimate);
   if (!options.force) {
     refuse_what_cannot_fit(scene, estimate, memory_limit_mb(options.mpi.ranks));

@@ -140,7 +140,7 @@ int run_command_line(const std::vector<std::string>& args) {
   }
   if (a.command == "check") {
     std::cout << scene_to_json(scene).dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) << "\n";
-    if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene));
+    if (ranks.rank == 0) std::cerr << describe(estimate_resources(scene, ranks.count));
     return 0;
   }
   try {

@@ -66,17 +66,6 @@ RankShare rank_share(const MpiContext& mpi, const Scene& scene, const CutTimelin
   return rebuilt ? RankShare{} : mpi.ranks;
 }
 
-/// Whether a FEM body's mesh is divided among the ranks, each holding its
-/// piece: under mpirun, unless the body needs what a piece cannot give yet
-/// (cells split by a cut, a cut that meshes the body anew as it grows,
-/// nodal stars of averaged pressure, boundary samples for contact), which
-/// keep the whole mesh on every rank.
-bool divides_mesh(const MpiContext& mpi, const Scene& scene, const CutTimeline& cuts, double time) {
-  return mpi.distributed() && rank_share(mpi, scene, cuts).distributed() &&
-         cuts.fem_pieces(FemCut::split, time).empty() &&
-         scene.discretization.fem.volumetric != FemVolumetric::averaged_nodal && scene.contact.empty();
-}
-
 /// A FEM body on this rank's piece of the scene's mesh, made and divided on
 /// rank 0 (cells a cut removes are removed there first).
 std::unique_ptr<DiscreteBody> make_fem_piece_body(const MpiContext& mpi, const Scene& scene, const CutTimeline& cuts,
@@ -130,7 +119,8 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
-  if (divides_mesh(mpi, scene, *cuts, time)) return make_fem_piece_body(mpi, scene, *cuts, time, report);
+  if (mpi.distributed() && body_plan(scene).divided_among_ranks)
+    return make_fem_piece_body(mpi, scene, *cuts, time, report);
   // Made on rank 0 alone under mpirun (its notes are rank 0's: it writes the summary).
   Mesh mesh = mesh_from_first_rank(mpi, [&] { return fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report); });
   report.add_stage("mesh");

@@ -10,6 +10,15 @@ bool has_boundary_loads(const Scene& scene) {
                      [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
 }
 
+bool fem_mesh_divides(const Scene& scene) {
+  const auto keeps_whole = [](const Cut& cut) {
+    return cut.fem == FemCut::split || std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
+  };
+  return scene.discretization.method == Method::fem &&
+         std::none_of(scene.cuts.begin(), scene.cuts.end(), keeps_whole) &&
+         scene.discretization.fem.volumetric != FemVolumetric::averaged_nodal && scene.contact.empty();
+}
+
 }  // namespace
 
 BodyPlan body_plan(const Scene& scene) {
@@ -21,6 +30,7 @@ BodyPlan body_plan(const Scene& scene) {
     // The element's mesh at FEM's size: FEM's cells, or the meshless nodes at its corners.
     plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
     plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
+    plan.divided_among_ranks = fem_mesh_divides(scene);
     return plan;
   }
   // A lattice of nodes; linear background cells where EFG integrates, loads act or spheres touch.

@@ -23,6 +23,12 @@ struct BodyPlan {
   MeshPlan mesh;
   /// Meshless: the nodes are the mesh's corner nodes (else a lattice in the box).
   bool nodes_on_mesh = false;
+  /// Under mpirun, the mesh is divided among the ranks, each holding its
+  /// piece (geometry/mesh_division.h), instead of whole on every rank: a FEM
+  /// body without what a piece cannot give yet (cells split by a cut, a cut
+  /// that grows and so meshes the body anew, nodal stars of averaged
+  /// pressure, contact's boundary samples).
+  bool divided_among_ranks = false;
   /// The key whose size sets the node count, and its value (m).
   const char* size_key = "";
   double size = 0.0;

@@ -175,6 +175,9 @@ struct SolveOptions {
   NewtonOptions newton;
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   std::string petsc = "-ksp_type cg -pc_type gamg";
+  /// Whether the scene (or --set) wrote solve.petsc: left out, a run on
+  /// several MPI ranks adds kerf's memory options to it (petsc_rank_options).
+  bool petsc_written = false;
   double linear_tolerance = 1.0e-10;  // relative residual of iterative linear solves
   MassKind mass = MassKind::consistent;  // implicit runs; explicit always lumps
   /// The material tangent implicit solves assemble: exact, made positive

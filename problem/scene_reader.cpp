@@ -275,7 +275,10 @@ void read_solve(const YamlField& f, Method method, SolveOptions& s) {
   }
   if (f.has("linear_solver"))
     s.linear_solver = f["linear_solver"].enumeration<LinearSolverKind>();
-  if (f.has("petsc")) s.petsc = f["petsc"].text();
+  if (f.has("petsc")) {
+    s.petsc = f["petsc"].text();
+    s.petsc_written = true;
+  }
   if (f.has("linear_tolerance")) s.linear_tolerance = f["linear_tolerance"].number();
   if (f.has("mass")) s.mass = f["mass"].enumeration<MassKind>();
   if (f.has("tangent")) s.tangent = f["tangent"].enumeration<TangentKind>();

@@ -64,6 +64,12 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
   LinearSolverOptions linear;
   linear.kind = options.linear_solver;
   linear.petsc_options = options.petsc;
+  if (!options.petsc_written && mechanics_.ranks().distributed()) {
+    linear.petsc_options += petsc_rank_options;
+    report_.notes.push_back("solve.petsc: not written, so on " + std::to_string(mechanics_.ranks().count) +
+                            " MPI ranks '" + linear.petsc_options + "' (GAMG's memory divided among the ranks; "
+                            "docs/parallel.md)");
+  }
   linear.relative_tolerance = options.linear_tolerance;
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);

@@ -25,6 +25,8 @@ class MechanicalSystem {
   MechanicalSystem(DiscreteBody& body, const Scene& scene, RunReport& report, RankShare ranks = {});
 
   const DiscreteBody& body() const { return body_; }
+  /// This process among the run's MPI ranks.
+  const RankShare& ranks() const { return ranks_; }
   /// The body's tangents from now on: definite (projected) or exact (DiscreteBody::use_definite_tangent).
   void use_definite_tangent(bool definite) { body_.use_definite_tangent(definite); }
   /// The body's shape functions changed in place (a growing cut): the terms read them again.
