@@ -4,6 +4,7 @@
 
 #include <Eigen/Dense>
 #include <algorithm>
+#include <array>
 
 #include "core/check.h"
 #include "core/parallel_failure.h"
@@ -425,12 +426,19 @@ const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
   pair_offsets_.resize(static_cast<std::size_t>(cell_end_ - cell_begin_) * npc_ * npc_);
   Index lacking = -1;  // a cell whose blocks the pattern lacks (no exception may leave the loop)
 #pragma omp parallel for schedule(static)
-  for (Index c = cell_begin_; c < cell_end_; ++c)
-    if (!cell_block_offsets(mesh_.cell(c), mesh_.dimension, m,
+  for (Index c = cell_begin_; c < cell_end_; ++c) {
+    std::array<Index, 10> global;  // a piece's cell in the matrix's numbering
+    std::span<const Index> nodes = mesh_.cell(c);
+    if (piece_) {
+      for (int a = 0; a < npc_; ++a) global[a] = piece_->global_node[nodes[a]];
+      nodes = std::span<const Index>(global.data(), npc_);
+    }
+    if (!cell_block_offsets(nodes, mesh_.dimension, m,
                             &pair_offsets_[static_cast<std::size_t>(c - cell_begin_) * npc_ * npc_])) {
 #pragma omp critical(kerf_pair_offsets)
       lacking = c;
     }
+  }
   KERF_CHECK(lacking < 0, "internal: the matrix's pattern lacks a block of cell ", lacking);
   offsets_pattern_ = m;
   return pair_offsets_;
@@ -482,7 +490,11 @@ void FemBody::add_tangent_into(const Vector& u, const CsrView& m, Vector* f) con
   const int dpn = mesh_.dimension, npc = npc_;
   // Cells of one phase share no node, hence no row: no two threads add to one value.
   ElementSink write = [&](Index c, std::span<const Index> dofs, std::span<const double> block) {
-    add_block(m, &offsets[static_cast<std::size_t>(c - cell_begin_) * npc * npc], dpn, dofs, block);
+    const Index* at = &offsets[static_cast<std::size_t>(c - cell_begin_) * npc * npc];
+    if (!piece_) return add_block(m, at, dpn, dofs, block);
+    std::array<Index, 30> global;  // the dofs in the matrix's numbering
+    for (std::size_t k = 0; k < dofs.size(); ++k) global[k] = dpn * piece_->global_node[dofs[k] / dpn] + dofs[k] % dpn;
+    add_block(m, at, dpn, std::span<const Index>(global.data(), dofs.size()), block);
   };
   if (!bulk_average_) return loop(u, &write, f, nullptr);
   const std::vector<Index>& at_star = star_offsets(m);

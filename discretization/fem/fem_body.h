@@ -31,6 +31,9 @@ struct FemPiece {
   double domain_size = 0.0;  // the whole body's bounding-box diagonal (m)
   /// The whole run's selection as this piece's nodes (a collective call).
   std::function<std::vector<Index>(const Selection&)> select;
+  /// Each node's number across the pieces: add_tangent_into writes into a
+  /// matrix in those numbers.
+  std::vector<Index> global_node;
 };
 
 class FemBody final : public DiscreteBody,
@@ -95,6 +98,7 @@ class FemBody final : public DiscreteBody,
   /// stiffness over its lumped mass).
   double critical_time_step() const override;
   const Mesh& mesh() const override { return mesh_; }
+  /// On a piece, `matrix` is in the pieces' global numbering (FemPiece::global_node).
   void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
 
   bool partitioned() const override { return share_.distributed(); }

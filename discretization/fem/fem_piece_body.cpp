@@ -62,7 +62,7 @@ FemPieceBody::FemPieceBody(const Scene& scene, MeshPiece piece, const MpiContext
     neighbours += part[0];
   mean_neighbors_ = total_nodes_ ? neighbours / static_cast<double>(total_nodes_) : 0.0;
   FemPiece own_part{piece.own_cells, own_nodes_, domain_size_,
-                    [this](const Selection& s) { return piece_selection(s); }};
+                    [this](const Selection& s) { return piece_selection(s); }, global_node_};
   body_ = std::make_unique<FemBody>(scene, std::move(piece.mesh), std::move(own_part));
   for (Index n : body_->touched_nodes()) touched_.push_back(global_node_[n]);
   std::sort(touched_.begin(), touched_.end());
@@ -224,6 +224,12 @@ void FemPieceBody::internal_force(const Vector& u, Vector& f) const {
 void FemPieceBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   Vector piece_force;
   body_->tangent(local(u), to_global(sink), f ? &piece_force : nullptr);
+  if (f) *f = whole_part(piece_force);
+}
+
+void FemPieceBody::add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const {
+  Vector piece_force;
+  body_->add_tangent_into(local(u), matrix, f ? &piece_force : nullptr);
   if (f) *f = whole_part(piece_force);
 }
 

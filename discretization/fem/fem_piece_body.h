@@ -18,7 +18,10 @@
 
 namespace kerf {
 
-class FemPieceBody final : public DiscreteBody, public ElementStepBound, public PartitionedAssembly {
+class FemPieceBody final : public DiscreteBody,
+                           public ElementStepBound,
+                           public MatrixAssembly,
+                           public PartitionedAssembly {
  public:
   /// Collective: every rank builds its piece's body at once.
   FemPieceBody(const Scene& scene, MeshPiece piece, const MpiContext& mpi);
@@ -48,6 +51,9 @@ class FemPieceBody final : public DiscreteBody, public ElementStepBound, public 
   std::optional<PointInterpolation> interpolation_at(const Vec3& x) const override;
   /// This rank's own cells (BodySnapshot::piece).
   void snapshot(const Vector& u, BodySnapshot& out) const override { body_->snapshot(local(u), out); }
+
+  /// This rank's cells' blocks straight into the matrix's arrays (FemBody's own path).
+  void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
 
   /// Over this rank's cells (the caller takes the smallest over the ranks).
   double critical_time_step() const override { return body_->critical_time_step(); }
