@@ -302,7 +302,8 @@ double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
   if (ranks <= 1) return base_mb + m.sum();
   if (body_plan(scene).divided_among_ranks)
     return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
-  return base_mb + std::max(m.meshing + m.mesh, m.mesh + m.tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
+  return base_mb +
+         std::max(m.meshing + m.mesh, m.mesh + m.tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
 }
 
 }  // namespace

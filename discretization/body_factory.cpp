@@ -89,7 +89,8 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Sc
   const BodyPlan plan = body_plan(scene);
   std::optional<Mesh> background;
   if (plan.mesh.made) {
-    background = corner_mesh(mesh_from_first_rank(mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
+    background =
+        corner_mesh(mesh_from_first_rank(mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
     order_for_locality(*background);
     report.add_stage("mesh");
   }
@@ -122,7 +123,8 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, Run
   if (mpi.distributed() && body_plan(scene).divided_among_ranks)
     return make_fem_piece_body(mpi, scene, *cuts, time, report);
   // Made on rank 0 alone under mpirun (its notes are rank 0's: it writes the summary).
-  Mesh mesh = mesh_from_first_rank(mpi, [&] { return fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report); });
+  Mesh mesh =
+      mesh_from_first_rank(mpi, [&] { return fem_mesh(scene, cuts->fem_pieces(FemCut::remesh, time), report); });
   report.add_stage("mesh");
   if (!removed.empty()) {
     report.cuts.removed_cells += remove_crossed_cells(mesh, removed);

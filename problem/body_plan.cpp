@@ -12,7 +12,8 @@ bool has_boundary_loads(const Scene& scene) {
 
 bool fem_mesh_divides(const Scene& scene) {
   const auto keeps_whole = [](const Cut& cut) {
-    return cut.fem == FemCut::split || std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
+    const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
+    return cut.fem == FemCut::split || grows;
   };
   return scene.discretization.method == Method::fem &&
          std::none_of(scene.cuts.begin(), scene.cuts.end(), keeps_whole) &&

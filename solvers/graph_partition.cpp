@@ -43,8 +43,9 @@ std::vector<int> ptscotch_parts(std::span<const Index> offsets, std::span<const 
     KERF_CHECK(p >= 0 && p < parts, "internal: PT-Scotch returned part ", p, " of ", parts);
     ++count[p];
   }
-  KERF_CHECK(std::count(count.begin(), count.end(), 0) == 0, "internal: PT-Scotch left a part empty (", vertices,
-             " cells into ", parts, " parts)");
+  const auto empty = std::find(count.begin(), count.end(), 0);
+  KERF_CHECK(empty == count.end(), "PT-Scotch gave rank ", empty - count.begin(), " no cell of the mesh's ", vertices,
+             " among ", parts, " ranks; expected a mesh of many more cells than ranks (run on fewer ranks)");
   return out;
 }
 

@@ -50,23 +50,28 @@ FemPieceBody::FemPieceBody(const Scene& scene, MeshPiece piece, const MpiContext
       global_node_(std::move(piece.global_node)),
       piece_positions_(piece.mesh.nodes),
       on_boundary_(boundary_node_flags(piece.mesh, boundary_facets(piece.mesh))) {
-  // Every node's position: each rank's own nodes, end to end.
-  std::vector<double> own;
-  for (Index n = 0; n < own_nodes_; ++n) own.insert(own.end(), piece.mesh.nodes[n].data(), piece.mesh.nodes[n].data() + 3);
-  for (const std::vector<double>& part : mpi_.from_every_rank(std::move(own)))
-    for (std::size_t k = 0; k + 2 < part.size(); k += 3) positions_.emplace_back(part[k], part[k + 1], part[k + 2]);
-  KERF_CHECK(static_cast<Index>(positions_.size()) == total_nodes_, "internal: the ranks own ", positions_.size(),
-             " nodes of ", total_nodes_);
-  double neighbours = 0.0;  // whole numbers: the sum is exact
-  for (const std::vector<double>& part : mpi_.from_every_rank({own_neighbour_count(piece.mesh, own_nodes_)}))
-    neighbours += part[0];
-  mean_neighbors_ = total_nodes_ ? neighbours / static_cast<double>(total_nodes_) : 0.0;
+  share_positions_and_neighbours(piece.mesh);
   FemPiece own_part{piece.own_cells, own_nodes_, domain_size_,
                     [this](const Selection& s) { return piece_selection(s); }, global_node_};
   body_ = std::make_unique<FemBody>(scene, std::move(piece.mesh), std::move(own_part));
   for (Index n : body_->touched_nodes()) touched_.push_back(global_node_[n]);
   std::sort(touched_.begin(), touched_.end());
   share_loads_and_constraints(scene);
+}
+
+void FemPieceBody::share_positions_and_neighbours(const Mesh& mesh) {
+  // Every node's position: each rank's own nodes, end to end.
+  std::vector<double> own;
+  for (Index n = 0; n < own_nodes_; ++n)
+    own.insert(own.end(), mesh.nodes[n].data(), mesh.nodes[n].data() + 3);
+  for (const std::vector<double>& part : mpi_.from_every_rank(std::move(own)))
+    for (std::size_t k = 0; k + 2 < part.size(); k += 3) positions_.emplace_back(part[k], part[k + 1], part[k + 2]);
+  KERF_CHECK(static_cast<Index>(positions_.size()) == total_nodes_, "internal: the ranks own ", positions_.size(),
+             " nodes of ", total_nodes_);
+  double neighbours = 0.0;  // whole numbers: the sum is exact
+  for (const std::vector<double>& part : mpi_.from_every_rank({own_neighbour_count(mesh, own_nodes_)}))
+    neighbours += part[0];
+  mean_neighbors_ = total_nodes_ ? neighbours / static_cast<double>(total_nodes_) : 0.0;
 }
 
 void FemPieceBody::share_loads_and_constraints(const Scene& scene) {
@@ -92,7 +97,8 @@ void FemPieceBody::share_loads_and_constraints(const Scene& scene) {
       own.push_back(d.value);
     }
   for (const std::vector<double>& part : mpi_.from_every_rank(std::move(own)))
-    for (std::size_t k = 0; k + 1 < part.size(); k += 2) dirichlet_.push_back({static_cast<Index>(part[k]), part[k + 1]});
+    for (std::size_t k = 0; k + 1 < part.size(); k += 2)
+      dirichlet_.push_back({static_cast<Index>(part[k]), part[k + 1]});
 }
 
 Vector FemPieceBody::joined_own_rows(const Vector& piece_values) const {

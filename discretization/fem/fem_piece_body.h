@@ -78,6 +78,8 @@ class FemPieceBody final : public DiscreteBody,
   BlockSink to_global(const BlockSink& sink) const;
   /// Every rank's own rows of `piece_values` end to end: the whole vector. Collective.
   Vector joined_own_rows(const Vector& piece_values) const;
+  /// Every node's position and the whole mesh's mean neighbour count (collective).
+  void share_positions_and_neighbours(const Mesh& mesh);
   /// The loads and constraints of the whole run (collective).
   void share_loads_and_constraints(const Scene& scene);
 

@@ -89,9 +89,11 @@ int main(int argc, char** argv) {
 
   // Every node held sits where its owner says (positions joined in rank order).
   std::vector<double> own_positions;
-  for (Index n = 0; n < piece.own_nodes; ++n) own_positions.insert(own_positions.end(), m.nodes[n].data(), m.nodes[n].data() + 3);
+  for (Index n = 0; n < piece.own_nodes; ++n)
+    own_positions.insert(own_positions.end(), m.nodes[n].data(), m.nodes[n].data() + 3);
   std::vector<double> positions;
-  for (const auto& part : mpi.from_every_rank(own_positions)) positions.insert(positions.end(), part.begin(), part.end());
+  for (const auto& part : mpi.from_every_rank(own_positions))
+    positions.insert(positions.end(), part.begin(), part.end());
   for (Index n = 0; n < m.node_count(); ++n)
     for (int i = 0; i < 3; ++i)
       expect(positions[3 * piece.global_node[n] + i] == m.nodes[n][i],
