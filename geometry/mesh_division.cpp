@@ -66,8 +66,6 @@ MeshPiece make_piece(const Mesh& mesh, std::span<const int> cell_part, std::span
   piece.first_node = first_of_part[p];
   piece.total_nodes = mesh.node_count();
   piece.total_cells = mesh.cell_count();
-  const auto box = bounding_box(mesh);
-  piece.domain_size = (box[1] - box[0]).norm();
   std::vector<char> near(mesh.node_count(), 0);  // a node of an own cell
   for (Index c = 0; c < mesh.cell_count(); ++c)
     if (cell_part[c] == p) {
@@ -115,7 +113,11 @@ std::vector<MeshPiece> divide_mesh(const Mesh& mesh, std::span<const int> cell_p
   std::vector<Index> global(mesh.node_count()), next(first_of_part.begin(), first_of_part.end() - 1);
   for (Index n = 0; n < mesh.node_count(); ++n) global[n] = next[owner[n]]++;
   std::vector<MeshPiece> pieces;
-  for (int p = 0; p < parts; ++p) pieces.push_back(make_piece(mesh, cell_part, owner, global, first_of_part, p));
+  const auto box = bounding_box(mesh);
+  for (int p = 0; p < parts; ++p) {
+    pieces.push_back(make_piece(mesh, cell_part, owner, global, first_of_part, p));
+    pieces.back().domain_size = (box[1] - box[0]).norm();
+  }
   return pieces;
 }
 

@@ -22,10 +22,12 @@ EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const 
   };
   Eigen::MatrixXd Q(n, m + 1);
   std::vector<double> alpha, beta;
-  std::srand(1);
-  Q.col(0) = Vector::Random(n);
-  if (options.start_entry)
+  if (options.start_entry) {
     for (Index i = 0; i < n; ++i) Q(i, 0) = options.start_entry(free.free_dofs()[i]);
+  } else {
+    std::srand(1);
+    Q.col(0) = Vector::Random(n);
+  }
   Q.col(0).normalize();
   // A previous Ritz vector with the random one mixed in: a mode it lacks is still reached.
   if (options.start && options.start->size() == n) Q.col(0) = (*options.start + 0.5 * Q.col(0)).normalized();

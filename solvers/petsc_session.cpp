@@ -69,34 +69,6 @@ void stop_every_rank(const RankShare& ranks, int code, const std::string& messag
 
 void wait_for_every_rank() { check_petsc(PetscBarrier(nullptr), "PetscBarrier"); }
 
-std::vector<double> send_from_first_rank(std::vector<double> values) {
-  ensure_petsc_initialized();
-  PetscMPIInt rank = 0;
-  check_petsc(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
-  const PetscInt mine = rank == 0 ? static_cast<PetscInt>(values.size()) : 0;
-  KERF_CHECK(rank != 0 || static_cast<std::size_t>(mine) == values.size(), "internal: ", values.size(),
-             " values are too many to send in one PETSc vector");
-  Vec held = nullptr, all = nullptr;  // rank 0's values; every rank's copy of them
-  VecScatter to_all = nullptr;
-  check_petsc(VecCreateMPIWithArray(PETSC_COMM_WORLD, 1, mine, PETSC_DETERMINE, values.data(), &held),
-              "VecCreateMPIWithArray");
-  check_petsc(VecScatterCreateToAll(held, &to_all, &all), "VecScatterCreateToAll");
-  check_petsc(VecScatterBegin(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check_petsc(VecScatterEnd(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  if (rank != 0) {
-    PetscInt size = 0;
-    check_petsc(VecGetSize(all, &size), "VecGetSize");
-    const PetscScalar* received = nullptr;
-    check_petsc(VecGetArrayRead(all, &received), "VecGetArrayRead");
-    values.assign(received, received + size);
-    check_petsc(VecRestoreArrayRead(all, &received), "VecRestoreArrayRead");
-  }
-  check_petsc(VecScatterDestroy(&to_all), "VecScatterDestroy");
-  check_petsc(VecDestroy(&all), "VecDestroy");
-  check_petsc(VecDestroy(&held), "VecDestroy");
-  return values;
-}
-
 RankShare mpi_ranks() {
   if (!launched_by_mpi()) return {};
   ensure_petsc_initialized();

@@ -34,10 +34,6 @@ void ensure_petsc_initialized();
 /// needs: the output folder, the pieces of a .pvtu).
 void wait_for_every_rank();
 
-/// Rank 0's values on every rank (each passes its own; only rank 0's are
-/// read): a PETSc vector held by rank 0, gathered to all. Collective.
-std::vector<double> send_from_first_rank(std::vector<double> values);
-
 /// This process's rank among those mpirun started (Open MPI or another PMIx
 /// launcher: PETSc is then started here); 0 of 1 without a launcher, and
 /// PETSc is left unstarted.

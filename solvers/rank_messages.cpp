@@ -28,6 +28,18 @@ PetscInt vector_length(std::size_t size) {
   return static_cast<PetscInt>(size);
 }
 
+/// `from`'s entries scattered into `to` and this rank's of them read; the
+/// scatter and both vectors destroyed.
+std::vector<double> scatter_and_read(VecScatter scatter, Vec from, Vec to) {
+  check_petsc(VecScatterBegin(scatter, from, to, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  check_petsc(VecScatterEnd(scatter, from, to, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  std::vector<double> out = local_values(to);
+  check_petsc(VecScatterDestroy(&scatter), "VecScatterDestroy");
+  check_petsc(VecDestroy(&to), "VecDestroy");
+  check_petsc(VecDestroy(&from), "VecDestroy");
+  return out;
+}
+
 /// Every rank's `mine` concatenated in rank order, on every rank.
 std::vector<double> concatenated(std::vector<double>& mine) {
   Vec held = nullptr, all = nullptr;
@@ -36,16 +48,18 @@ std::vector<double> concatenated(std::vector<double>& mine) {
                                     &held),
               "VecCreateMPIWithArray");
   check_petsc(VecScatterCreateToAll(held, &to_all, &all), "VecScatterCreateToAll");
-  check_petsc(VecScatterBegin(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check_petsc(VecScatterEnd(to_all, held, all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  std::vector<double> out = local_values(all);
-  check_petsc(VecScatterDestroy(&to_all), "VecScatterDestroy");
-  check_petsc(VecDestroy(&all), "VecDestroy");
-  check_petsc(VecDestroy(&held), "VecDestroy");
-  return out;
+  return scatter_and_read(to_all, held, all);
 }
 
 }  // namespace
+
+std::vector<double> send_from_first_rank(std::vector<double> values) {
+  ensure_petsc_initialized();
+  PetscMPIInt rank = 0;
+  check_petsc(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
+  if (rank != 0) values.clear();  // rank 0's alone, end to end, is rank 0's
+  return concatenated(values);
+}
 
 std::vector<double> send_parts_from_first_rank(std::vector<std::vector<double>> parts) {
   ensure_petsc_initialized();
@@ -78,13 +92,7 @@ std::vector<double> send_parts_from_first_rank(std::vector<std::vector<double>> 
   check_petsc(ISCreateStride(PETSC_COMM_WORLD, end - first, first, 1, &entries), "ISCreateStride");
   check_petsc(VecScatterCreate(held, entries, mine, entries, &to_owner), "VecScatterCreate");
   check_petsc(ISDestroy(&entries), "ISDestroy");
-  check_petsc(VecScatterBegin(to_owner, held, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-  check_petsc(VecScatterEnd(to_owner, held, mine, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-  std::vector<double> out = local_values(mine);
-  check_petsc(VecScatterDestroy(&to_owner), "VecScatterDestroy");
-  check_petsc(VecDestroy(&mine), "VecDestroy");
-  check_petsc(VecDestroy(&held), "VecDestroy");
-  return out;
+  return scatter_and_read(to_owner, held, mine);
 }
 
 std::vector<std::vector<double>> gather_from_every_rank(std::vector<double> mine) {

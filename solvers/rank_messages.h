@@ -7,6 +7,10 @@
 
 namespace kerf {
 
+/// Rank 0's values on every rank (each passes its own; only rank 0's are
+/// read): a PETSc vector held by rank 0, gathered to all. Collective.
+std::vector<double> send_from_first_rank(std::vector<double> values);
+
 /// Rank 0's parts[r] on rank r: rank 0's lists in one PETSc vector held by
 /// rank 0, scattered to a vector whose rank r holds list r. Collective.
 std::vector<double> send_parts_from_first_rank(std::vector<std::vector<double>> parts);

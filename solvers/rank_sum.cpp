@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "solvers/petsc_session.h"
+#include "solvers/rank_messages.h"
 
 namespace kerf {
 
@@ -79,15 +80,7 @@ double RankSum::smallest(double x) const {
 
 std::vector<std::vector<double>> values_of_every_rank(const std::vector<double>& mine, const RankShare& ranks) {
   if (!ranks.distributed()) return {mine};
-  const Index k = static_cast<Index>(mine.size()), first = ranks.rank * k;
-  std::vector<Index> entries(k);
-  for (Index i = 0; i < k; ++i) entries[i] = first + i;
-  Vector all = Vector::Zero(k * ranks.count);
-  all.segment(first, k) = Eigen::Map<const Vector>(mine.data(), k);
-  RankSum(all.size(), first, first + k, entries).sum(all);
-  std::vector<std::vector<double>> values(ranks.count);
-  for (int r = 0; r < ranks.count; ++r) values[r].assign(all.data() + r * k, all.data() + (r + 1) * k);
-  return values;
+  return gather_from_every_rank(mine);
 }
 
 }  // namespace kerf

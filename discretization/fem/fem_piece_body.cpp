@@ -196,10 +196,15 @@ const Vector& FemPieceBody::local(const Vector& u) const {
   return local_u_;
 }
 
-Vector FemPieceBody::whole_part(const Vector& piece_values) const {
-  Vector whole = Vector::Zero(dof_count());
+void FemPieceBody::to_whole(const Vector& piece_values, Vector& whole) const {
+  whole.setZero(dof_count());
   for (Index n = 0; n < static_cast<Index>(global_node_.size()); ++n)
     for (int i = 0; i < dim_; ++i) whole[dim_ * global_node_[n] + i] = piece_values[dim_ * n + i];
+}
+
+Vector FemPieceBody::lumped_mass() const {
+  Vector whole;
+  to_whole(body_->lumped_mass(), whole);
   return whole;
 }
 
@@ -222,21 +227,18 @@ void FemPieceBody::visit_couplings(const CouplingVisitor& visit) const {
 }
 
 void FemPieceBody::internal_force(const Vector& u, Vector& f) const {
-  Vector piece_force;
-  body_->internal_force(local(u), piece_force);
-  f = whole_part(piece_force);
+  body_->internal_force(local(u), piece_force_);
+  to_whole(piece_force_, f);
 }
 
 void FemPieceBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
-  Vector piece_force;
-  body_->tangent(local(u), to_global(sink), f ? &piece_force : nullptr);
-  if (f) *f = whole_part(piece_force);
+  body_->tangent(local(u), to_global(sink), f ? &piece_force_ : nullptr);
+  if (f) to_whole(piece_force_, *f);
 }
 
 void FemPieceBody::add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const {
-  Vector piece_force;
-  body_->add_tangent_into(local(u), matrix, f ? &piece_force : nullptr);
-  if (f) *f = whole_part(piece_force);
+  body_->add_tangent_into(local(u), matrix, f ? &piece_force_ : nullptr);
+  if (f) to_whole(piece_force_, *f);
 }
 
 }  // namespace kerf

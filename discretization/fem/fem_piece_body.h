@@ -40,7 +40,7 @@ class FemPieceBody final : public DiscreteBody,
   bool is_linear() const override { return body_->is_linear(); }
   void begin_time_step(const Vector& u) override { body_->begin_time_step(local(u)); }
 
-  Vector lumped_mass() const override { return whole_part(body_->lumped_mass()); }
+  Vector lumped_mass() const override;
   void consistent_mass(const BlockSink& sink) const override { body_->consistent_mass(to_global(sink)); }
   void external_force(double, Vector& f) const override { f = load_; }
   std::vector<DirichletDof> dirichlet(double) const override { return dirichlet_; }
@@ -73,8 +73,9 @@ class FemPieceBody final : public DiscreteBody,
   Index global_dof(Index local_dof) const { return dim_ * global_node_[local_dof / dim_] + local_dof % dim_; }
   /// A whole vector's entries at this piece's dofs (into a kept buffer).
   const Vector& local(const Vector& u) const;
-  /// A vector over this piece's dofs as a whole one (zero at the other dofs).
-  Vector whole_part(const Vector& piece_values) const;
+  /// A vector over this piece's dofs as a whole one (zero at the other
+  /// dofs), into `whole` (no allocation once it is sized).
+  void to_whole(const Vector& piece_values, Vector& whole) const;
   BlockSink to_global(const BlockSink& sink) const;
   /// Every rank's own rows of `piece_values` end to end: the whole vector. Collective.
   Vector joined_own_rows(const Vector& piece_values) const;
@@ -96,7 +97,7 @@ class FemPieceBody final : public DiscreteBody,
   std::vector<Index> touched_;      // global numbers, ascending
   Vector load_;
   std::vector<DirichletDof> dirichlet_;
-  mutable Vector local_u_;
+  mutable Vector local_u_, piece_force_;  // buffers of the calls made every step
 };
 
 }  // namespace kerf

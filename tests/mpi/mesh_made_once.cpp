@@ -10,6 +10,7 @@
 #include "geometry/box_mesher.h"
 #include "geometry/mesh_from_first_rank.h"
 #include "solvers/petsc_session.h"
+#include "solvers/rank_messages.h"
 
 namespace {
 
