@@ -136,11 +136,14 @@ json scene_to_json(const Scene& s) {
                   {"max_iterations", so.newton.max_iterations},
                   {"line_search", so.newton.line_search}}},
                 {"linear_solver", to_string(so.linear_solver)},
-                {"petsc", so.petsc},
                 {"linear_tolerance", so.linear_tolerance},
                 {"mass", to_string(so.mass)},
                 {"tangent", to_string(so.tangent)}};
   if (so.newton.absolute_tolerance) j["solve"]["newton"]["absolute_tolerance"] = *so.newton.absolute_tolerance;
+  // Left out, solve.petsc means "kerf's choice for the ranks it runs on"
+  // (petsc_rank_options): written out, it would mean these options on every
+  // rank, so a scene read back would run another solver under mpirun.
+  if (so.petsc_written) j["solve"]["petsc"] = so.petsc;
   json probes = json::array();
   for (const auto& p : s.output.probes) probes.push_back(probe_json(p, dim));
   j["output"] = {{"dir", s.output.dir},

@@ -1,24 +1,31 @@
-// Scaling study: the same scene on 1, 2 and 3 MPI ranks, phase by phase.
+// Scaling study: the same scene on 1 to 4 MPI ranks, phase by phase.
 //
 //   kerf study scaling [--quick] [--out DIR]
 //
 // Each point is a separate `kerf run` under mpirun (1 rank: no mpirun), one
 // OpenMP thread a rank, so that ranks, not threads, share the cores; the
 // 1-rank run with as many threads as cores is measured beside them (what one
-// process does on the whole machine). Three problems:
+// process does on the whole machine). Ranks past the cores oversubscribe
+// them: their memory counts, not their time. The problems:
 //   static_tet10   strong scaling: the cantilever (10 x 2 x 2 cm, linear,
 //                  under its weight) in tet10, about 500 000 dofs (quick: 6 000);
+//   static_tet10_lean  the same with kerf's own PETSc options under mpirun
+//                  (solve.petsc left out: GAMG's memory options), for the
+//                  memory a rank against 1/N;
 //   implicit_tet4  strong scaling: the solvers study's corotational cube,
 //                  implicit Euler, one linearised solve a step, about 300 000
 //                  dofs (quick: 3 000), 3 steps;
 //   explicit_tet4  strong scaling: the same cube by central differences,
 //                  about 150 000 dofs (quick: 3 000), 200 steps (quick: 20);
+//   explicit_nodal the cube by nodal integration and central differences,
+//                  about 200 000 dofs (quick: 4 000), 200 steps (quick: 20);
+//   static_efg     the cantilever by EFG, about 18 000 dofs (quick: 1 600);
 //   weak_tet10     weak scaling: the cantilever with about 200 000 dofs a
 //                  rank (skipped in quick mode).
 // Every linear solve is PETSc CG + GAMG with the rigid-body near-null space,
 // to a relative residual of 1e-8. Read from each run: the phases (setup,
 // assembly, factorize = the preconditioner's set-up, solve, output), the
-// time-stepping loop's, the launch's wall time and rank 0's peak memory. Speed is measured here, never
+// time-stepping loop's, the launch's wall time and every rank's peak memory. Speed is measured here, never
 // asserted; the claims checked are that every point ran and that the ranks
 // give the 1-rank answer to the solver's tolerance.
 #include <algorithm>
@@ -32,12 +39,20 @@
 namespace kerf {
 namespace {
 
+/// Which launches a problem takes beside 1, 2 and 3 ranks of one thread.
+enum class Launches {
+  all,         // also 4 ranks (memory) and one rank of every core
+  memory,      // also 4 ranks: a memory series, no threads
+  three_ranks  // weak scaling: its own mesh a launch, up to 3 ranks
+};
+
 struct Problem {
   std::string label;
-  bool weak = false;
+  Launches launches;
   int steps = 1;  // time steps of a dynamic problem
   Scene (*scene)(double size, int steps);
-  double size;  // mesh size at one rank (m); weak scaling shrinks it with the ranks
+  double size;  // mesh size (or node spacing) at one rank (m); weak scaling shrinks it with the ranks
+  bool weak() const { return launches == Launches::three_ranks; }
 };
 
 /// PETSc's own GAMG defaults on any number of ranks, written out (so a run
@@ -56,8 +71,25 @@ Scene cantilever(double size, int /*steps: static*/) {
   scene.gravity = Vec3(0, 0, -9.81);
   scene.solve.linear_solver = LinearSolverKind::petsc;
   scene.solve.petsc = same_gamg_on_every_rank;
+  scene.solve.petsc_written = true;
   scene.solve.linear_tolerance = 1.0e-8;
   scene.output.probes = {displacement_probe("probe", Vec3(0.1, 0.01, 0.01))};
+  return scene;
+}
+
+/// The cantilever with the PETSc options kerf chooses itself on several ranks (solvers/linear_solver.h).
+Scene lean_cantilever(double size, int steps) {
+  Scene scene = cantilever(size, steps);
+  scene.solve.petsc = SolveOptions{}.petsc;
+  scene.solve.petsc_written = false;
+  return scene;
+}
+
+/// The cantilever by EFG on a lattice of `spacing`.
+Scene efg_cantilever(double spacing, int steps) {
+  Scene scene = cantilever(spacing, steps);
+  scene.discretization.method = Method::efg;
+  scene.discretization.meshless.spacing = spacing;
   return scene;
 }
 
@@ -72,6 +104,14 @@ Scene explicit_cube(double size, int steps) {
   scene.solve.integrator = Integrator::central_difference;
   scene.solve.dt = 0.0004;
   scene.solve.duration = 0.0004 * steps;
+  return scene;
+}
+
+/// The explicit cube by nodal integration on a lattice of `spacing`.
+Scene explicit_nodal_cube(double spacing, int steps) {
+  Scene scene = explicit_cube(spacing, steps);
+  scene.discretization.method = Method::nodal;
+  scene.discretization.meshless.spacing = spacing;
   return scene;
 }
 
@@ -127,7 +167,7 @@ double phase_sum(const Json& point, std::initializer_list<const char*> names) {
 Json strong_speedups(const std::vector<Problem>& problems, const Json& points) {
   Json speedups = Json::array();
   for (const Problem& problem : problems) {
-    const Json* one = problem.weak ? nullptr : one_rank_point(points, problem.label);
+    const Json* one = problem.weak() ? nullptr : one_rank_point(points, problem.label);
     if (!one) continue;
     for (const Json& p : points) {
       if (p["problem"] != problem.label || p["status"] != "ok" || &p == one) continue;
@@ -165,7 +205,7 @@ void check_scaling_claims(const std::vector<Problem>& problems, const Json& poin
     check_claim(p["status"] == "ok", p["problem"].get<std::string>() + " on " + p["ranks"].dump() + " ranks of " +
                                          p["threads"].dump() + " threads ran (" + p["status"].dump() + ")");
   for (const Problem& problem : problems) {
-    if (problem.weak) continue;  // each launch has its own mesh
+    if (problem.weak()) continue;  // each launch has its own mesh
     const Json* one = one_rank_point(points, problem.label);
     for (const Json& p : points) {
       if (p["problem"] != problem.label) continue;
@@ -180,26 +220,35 @@ void check_scaling_claims(const std::vector<Problem>& problems, const Json& poin
 }  // namespace
 
 void scaling_study(const StudyOptions& options) {
-  // 1. The problems and the launches: 1, 2, 3 ranks of one thread, and one rank of every core.
+  // 1. The problems and the launches: 1 to 4 ranks of one thread, and one rank of every core.
   const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   std::vector<Problem> problems;
   if (options.quick)
-    problems = {{"static_tet10", false, 1, cantilever, 0.005},
-                {"implicit_tet4", false, 3, corotational_cube, 0.011},
-                {"explicit_tet4", false, 20, explicit_cube, 0.011}};
+    problems = {{"static_tet10", Launches::all, 1, cantilever, 0.005},
+                {"static_tet10_lean", Launches::memory, 1, lean_cantilever, 0.005},
+                {"implicit_tet4", Launches::all, 3, corotational_cube, 0.011},
+                {"explicit_tet4", Launches::all, 20, explicit_cube, 0.011},
+                {"explicit_nodal", Launches::all, 20, explicit_nodal_cube, 0.01},
+                {"static_efg", Launches::all, 1, efg_cantilever, 0.004}};
   else
-    problems = {{"static_tet10", false, 1, cantilever, 0.00116},
-                {"implicit_tet4", false, 3, corotational_cube, 0.002},
-                {"explicit_tet4", false, 200, explicit_cube, 0.0025},
-                {"weak_tet10", true, 1, cantilever, 0.0016}};
+    problems = {{"static_tet10", Launches::all, 1, cantilever, 0.00116},
+                {"static_tet10_lean", Launches::memory, 1, lean_cantilever, 0.00116},
+                {"implicit_tet4", Launches::all, 3, corotational_cube, 0.002},
+                {"explicit_tet4", Launches::all, 200, explicit_cube, 0.0025},
+                {"explicit_nodal", Launches::all, 200, explicit_nodal_cube, 0.0025},
+                {"static_efg", Launches::all, 1, efg_cantilever, 0.002},
+                {"weak_tet10", Launches::three_ranks, 1, cantilever, 0.0016}};
   struct Launch {
     int ranks, threads;
   };
-  std::vector<Launch> launches{{1, 1}, {2, 1}, {3, 1}};
-  if (cores > 1) launches.push_back({1, cores});
+  auto launches_of = [cores](const Problem& problem) {
+    std::vector<Launch> launches{{1, 1}, {2, 1}, {3, 1}};
+    if (problem.launches != Launches::three_ranks) launches.push_back({4, 1});
+    if (problem.launches == Launches::all && cores > 1) launches.push_back({1, cores});
+    return launches;
+  };
   int planned = 0;
-  for (const Problem& problem : problems)
-    for (const Launch& launch : launches) planned += problem.weak && launch.threads > 1 ? 0 : 1;
+  for (const Problem& problem : problems) planned += static_cast<int>(launches_of(problem).size());
   StudyRunner runner("scaling", options, planned);
 
   // 2. Run each.
@@ -210,9 +259,8 @@ void scaling_study(const StudyOptions& options) {
   CsvTable table(runner.out_dir() + "/scaling.csv", columns);
   Json points = Json::array();
   for (const Problem& problem : problems)
-    for (const Launch& launch : launches) {
-      if (problem.weak && launch.threads > 1) continue;
-      const double size = problem.weak ? problem.size / std::cbrt(static_cast<double>(launch.ranks)) : problem.size;
+    for (const Launch& launch : launches_of(problem)) {
+      const double size = problem.weak() ? problem.size / std::cbrt(static_cast<double>(launch.ranks)) : problem.size;
       const std::string label =
           problem.label + "_" + std::to_string(launch.ranks) + "x" + std::to_string(launch.threads);
       const Json point = point_of(problem, launch.ranks, launch.threads,

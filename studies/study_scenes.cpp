@@ -103,7 +103,10 @@ Scene implicit_cube(const std::string& name, double size, int steps, LinearSolve
   scene.gravity = Vec3(0, 0, -9.81);
   scene.solve = implicit_steps(0.01, steps);
   scene.solve.linear_solver = solver;
-  if (!petsc.empty()) scene.solve.petsc = petsc;
+  if (!petsc.empty()) {
+    scene.solve.petsc = petsc;
+    scene.solve.petsc_written = true;
+  }
   scene.solve.linear_tolerance = 1.0e-8;
   scene.output.probes = {displacement_probe(probe, Vec3(0.05, 0.05, 0.1))};
   return scene;

@@ -262,6 +262,21 @@ TEST(SceneReader, ResolvedSceneRoundTripsThroughJson) {
   EXPECT_EQ(j["discretization"]["meshless"]["support"], 2.2);
 }
 
+TEST(SceneReader, PetscOptionsLeftOutStayLeftOutWhenWrittenBack) {
+  // Left out, solve.petsc lets a run on several ranks add kerf's memory
+  // options; the resolved scene must keep that meaning, and keep written options.
+  const Scene left_out = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
+                                                  "solve: {linear_solver: petsc}");
+  const auto j = scene_to_json(left_out);
+  EXPECT_FALSE(j["solve"].contains("petsc"));
+  EXPECT_FALSE(testing::scene_from_text(j.dump()).solve.petsc_written);
+  const Scene written = testing::scene_from_text("domain: {box: {min: [0,0,0], max: [1,1,1]}}\n"
+                                                 "solve: {linear_solver: petsc, petsc: \"-ksp_type cg -pc_type gamg\"}");
+  const Scene again = testing::scene_from_text(scene_to_json(written).dump());
+  EXPECT_TRUE(again.solve.petsc_written);
+  EXPECT_EQ(again.solve.petsc, "-ksp_type cg -pc_type gamg");
+}
+
 TEST(SceneReader, ResolvedMeshlessScenesReadBackAsTheyWere) {
   // Each method's defaults (essential, nitsche_safety, vci) written out read
   // back to the same scene: a study's resolved scene runs again with `kerf run`.
