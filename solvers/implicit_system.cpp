@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/gmres.h"
+#include "solvers/free_system_rows.h"
 
 namespace kerf {
 
@@ -60,7 +61,6 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
   ScopedTimer timer(report_.phases, Phase::setup);
   KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
   stiffness_ = build_pattern(mechanics_);
-  free_.prepare_matrix(stiffness_);
   LinearSolverOptions linear;
   linear.kind = options.linear_solver;
   linear.petsc_options = options.petsc;
@@ -73,6 +73,7 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
   linear.relative_tolerance = options.linear_tolerance;
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
+  if (!solver_->copies_matrix()) free_.prepare_matrix(stiffness_);  // A_ff formed by kerf (system_rows otherwise)
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
   solver_->set_row_share(free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node()));
   symmetric_ = mechanics_.symmetric_tangent();
@@ -80,7 +81,7 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
              "discretization.meshless.vci: linear makes nodal integration's stiffness unsymmetric, which the implicit "
              "solve across MPI ranks does not take yet; expected discretization.meshless.vci: none for an implicit or "
              "static run under mpirun (explicit runs take VCI on any number of ranks)");
-  reuse_factorization_ = symmetric_ && !mechanics_.is_linear() && solver_->exact_factor();
+  reuse_factorization_ = symmetric_ && !mechanics_.is_linear() && solver_->exact_factor() && !solver_->copies_matrix();
   tangent_ = options.tangent;
   mechanics_.use_definite_tangent(tangent_ == TangentKind::definite);
   if (needs_mass) {
@@ -228,6 +229,7 @@ void ImplicitSystem::update_matrix(double cm, double ck, const std::string& wher
 }
 
 void ImplicitSystem::combine(double cm, double ck) {
+  if (solver_->copies_matrix()) return;  // the backend reads A's rows from K and M (backend_takes)
   // Straight into A_ff (no whole-dof copy of A: the largest array a run holds).
   // An unsymmetric A is applied through system_times: A_ff holds what is factorized.
   const double* k = symmetric_ ? stiffness_.valuePtr() : galerkin_.valuePtr();
@@ -242,20 +244,20 @@ void ImplicitSystem::combine(double cm, double ck) {
 void ImplicitSystem::factorize_now(const std::string& where) {
   ScopedTimer timer(report_.phases, Phase::factorize);
   if (!analyzed_) {
-    LinearSolverStatus status = solver_->analyze(free_.restricted());
+    LinearSolverStatus status = backend_takes(BackendStep::analyze);
     KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
     analyzed_ = true;
   }
   report_.add_stage("factorization");
   report_.solver.factorizations += 1;
-  LinearSolverStatus status = solver_->factorize(free_.restricted());
+  LinearSolverStatus status = backend_takes(BackendStep::factorize);
   const bool fell_back = !status.ok && falls_back_to_definite();
   if (fell_back) {
     // An exact hyperelastic tangent under compression is indefinite: this
     // iteration takes the definite one (same residual, slower convergence).
     assemble_definite_tangent();
     report_.solver.factorizations += 1;
-    status = solver_->factorize(free_.restricted());
+    status = backend_takes(BackendStep::factorize);
   }
   factor_failed_ = !status.ok;
   if (!status.ok && status.failed_row && *status.failed_row < free_.free_count()) {
@@ -272,6 +274,18 @@ void ImplicitSystem::factorize_now(const std::string& where) {
   }
   KERF_CHECK_SHARED(status.ok, where, ": ", status.message);  // not the matrix's fault (a backend's set-up)
   factor_stale_ = false;
+}
+
+LinearSolverStatus ImplicitSystem::backend_takes(BackendStep step) {
+  const bool analyze = step == BackendStep::analyze;
+  if (!solver_->copies_matrix())
+    return analyze ? solver_->analyze(free_.restricted()) : solver_->factorize(free_.restricted());
+  // As combine() forms A_ff, read row by row from K (or its Galerkin counterpart) and M.
+  const double cm = last_mass_coefficient_, ck = last_stiffness_coefficient_;
+  const FreeSystemRows rows(stiffness_, free_, ck, symmetric_ ? stiffness_.valuePtr() : galerkin_.valuePtr(), cm,
+                            cm != 0.0 && !lumped_ ? mass_values_.data() : nullptr,
+                            cm != 0.0 && lumped_ ? &own_lumped_mass_ : nullptr);
+  return analyze ? solver_->analyze_rows(rows) : solver_->factorize_rows(rows);
 }
 
 bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::string& where) {

@@ -1,16 +1,18 @@
 #pragma once
-// The matrices of an implicit step over all dofs: K(u) and, when asked, the mass
-// M (lumped or consistent, same pattern as K). Forms A = c_M M + c_K K on the
-// free dofs and solves with it, skipping work that cannot have changed: a
-// linear body assembles K once (with contact, its elastic part), an unchanged
-// A is not factorized again, and with a direct backend a changed A is first solved by conjugate gradients
-// preconditioned with the last factorization, refactorizing only when those
-// need more than a few iterations (the answer is the same to the tolerance).
-// A body whose stiffness is not symmetric (nodal integration with VCI) is
-// solved by GMRES preconditioned with the backend's factorization of its
-// Galerkin counterpart (test functions equal to the trial ones: symmetric,
-// and positive definite when the body is held; A's own symmetric part need
-// not be); serial only for now.
+// The matrices of an implicit step over all dofs: K(u) and, when asked, the
+// mass M (lumped or consistent, same pattern as K). Forms A = c_M M + c_K K
+// on the free dofs and solves with it (a backend that copies the matrix,
+// PETSc, reads A's rows straight from K and M instead: kerf then holds no
+// A_ff beside its copy), skipping work that cannot have changed: a linear
+// body assembles K once (with contact, its elastic part), an unchanged A is
+// not factorized again, and with a direct backend a changed A is first
+// solved by conjugate gradients preconditioned with the last factorization,
+// refactorizing only when those need more than a few iterations (the answer
+// is the same to the tolerance). A body whose stiffness is not symmetric
+// (nodal integration with VCI) is solved by GMRES preconditioned with the
+// backend's factorization of its Galerkin counterpart (test functions equal
+// to the trial ones: symmetric, and positive definite when the body is held;
+// A's own symmetric part need not be); serial only for now.
 #include <memory>
 
 #include "core/check.h"
@@ -68,7 +70,7 @@ class ImplicitSystem {
   bool stiffness_changed_ = true;
   double last_mass_coefficient_ = -1.0, last_stiffness_coefficient_ = -1.0;
   bool analyzed_ = false;
-  bool reuse_factorization_ = false;  // direct backend: precondition CG with a stale factor
+  bool reuse_factorization_ = false;  // direct backend kerf holds A_ff for: precondition CG with a stale factor
   bool symmetric_ = true;  // false: GMRES on A, the factor of its Galerkin counterpart preconditioning
   SparseMatrix galerkin_;  // the Galerkin tangent, in K's pattern, when K is not symmetric
   bool factor_stale_ = false;         // A changed since the last factorization
@@ -85,6 +87,10 @@ class ImplicitSystem {
   /// A = c_M M + c_K K on the free dofs (a partial matrix: this rank's part).
   void combine(double cm, double ck);
   void read_mass();
+  enum class BackendStep { analyze, factorize };
+  /// The backend's analysis or factorization of A: A_ff as formed, or, for a
+  /// backend that copies the matrix (PETSc), A's rows read from K and M.
+  LinearSolverStatus backend_takes(BackendStep step);
   /// Factorizes A; with solve.tangent: auto, a failed factorization of a
   /// nonlinear body's tangent is retried once with the definite tangent.
   void factorize_now(const std::string& where);

@@ -4,6 +4,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/run_report.h"
 #include "problem/scene.h"
@@ -18,6 +19,32 @@ struct LinearSolverStatus {
   std::optional<Index> failed_row;  // a direct solver's failed pivot, in the matrix's numbering
   static LinearSolverStatus success() { return {}; }
   static LinearSolverStatus failure(std::string why) { return {false, std::move(why), std::nullopt}; }
+};
+
+/// A matrix handed over one row at a time, for a backend that copies it into
+/// its own storage (PETSc): kerf need not form it whole in the backend's numbering.
+class MatrixRows {
+ public:
+  virtual ~MatrixRows() = default;
+  /// Rows (the matrix is square).
+  virtual Index size() const = 0;
+  /// Row r's columns (ascending) and values, replacing what `columns` and `values` held.
+  virtual void row(Index r, std::vector<Index>& columns, std::vector<double>& values) const = 0;
+};
+
+/// A stored CSR matrix's rows.
+class StoredRows final : public MatrixRows {
+ public:
+  explicit StoredRows(const SparseMatrix& matrix) : matrix_(matrix) {}
+  Index size() const override { return static_cast<Index>(matrix_.rows()); }
+  void row(Index r, std::vector<Index>& columns, std::vector<double>& values) const override {
+    const Index begin = matrix_.outerIndexPtr()[r], end = matrix_.outerIndexPtr()[r + 1];
+    columns.assign(matrix_.innerIndexPtr() + begin, matrix_.innerIndexPtr() + end);
+    values.assign(matrix_.valuePtr() + begin, matrix_.valuePtr() + end);
+  }
+
+ private:
+  const SparseMatrix& matrix_;
 };
 
 class LinearSolver {
@@ -44,6 +71,17 @@ class LinearSolver {
   /// How the MPI ranks share the rows (before analyze()): solvers that run on
   /// one rank ignore it (the command line refuses them under several).
   virtual void set_row_share(const RowShare& share) {}
+  /// Whether the backend copies the matrix into its own storage (PETSc). It
+  /// then takes it row by row (analyze_rows, factorize_rows), so that kerf
+  /// does not hold a copy of A beside the backend's.
+  virtual bool copies_matrix() const { return false; }
+  virtual LinearSolverStatus analyze_rows(const MatrixRows& pattern) { return takes_no_rows(); }
+  virtual LinearSolverStatus factorize_rows(const MatrixRows& A) { return takes_no_rows(); }
+
+ private:
+  LinearSolverStatus takes_no_rows() const {
+    return LinearSolverStatus::failure("internal: the " + name() + " backend takes a stored matrix, not rows");
+  }
 };
 
 /// What a run on several MPI ranks adds to solve.petsc when the scene leaves

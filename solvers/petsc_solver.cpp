@@ -29,8 +29,12 @@ class PetscSolver final : public LinearSolver {
   void set_near_null_space(const std::vector<Vector>& modes) override { near_null_space_ = modes; }
   void set_row_share(const RowShare& share) override { share_ = share; }
 
-  LinearSolverStatus analyze(const SparseMatrix& pattern) override {
-    const PetscInt n = static_cast<PetscInt>(pattern.rows());
+  bool copies_matrix() const override { return true; }
+  LinearSolverStatus analyze(const SparseMatrix& pattern) override { return analyze_rows(StoredRows(pattern)); }
+  LinearSolverStatus factorize(const SparseMatrix& A) override { return factorize_rows(StoredRows(A)); }
+
+  LinearSolverStatus analyze_rows(const MatrixRows& pattern) override {
+    const PetscInt n = static_cast<PetscInt>(pattern.size());
     PetscInt local = share_ ? share_->owned_end - share_->owned_begin : PETSC_DECIDE, global = n;
     check_petsc(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
     check_petsc(MatCreate(PETSC_COMM_WORLD, &matrix_), "MatCreate");
@@ -43,11 +47,12 @@ class PetscSolver final : public LinearSolver {
     check_petsc(MatGetOwnershipRange(matrix_, &first, &end), "MatGetOwnershipRange");
     // Diagonal-block and off-diagonal-block counts of the rows this rank owns.
     std::vector<PetscInt> d_nnz(end - first, 0), o_nnz(end - first, 0);
-    for (PetscInt r = first; r < end; ++r)
-      for (Index p = pattern.outerIndexPtr()[r]; p < pattern.outerIndexPtr()[r + 1]; ++p) {
-        PetscInt c = pattern.innerIndexPtr()[p];
-        (c >= first && c < end ? d_nnz : o_nnz)[r - first]++;
-      }
+    std::vector<Index> columns;
+    std::vector<double> values;
+    for (PetscInt r = first; r < end; ++r) {
+      pattern.row(static_cast<Index>(r), columns, values);
+      for (const Index c : columns) (c >= first && c < end ? d_nnz : o_nnz)[r - first]++;
+    }
     // Counted in blocks of whole nodes, whose rows share one pattern.
     const PetscInt bs = share_ ? share_->block_size : 1;
     for (PetscInt b = 0; b < (end - first) / bs; ++b) {
@@ -75,12 +80,15 @@ class PetscSolver final : public LinearSolver {
     return LinearSolverStatus::success();
   }
 
-  LinearSolverStatus factorize(const SparseMatrix& A) override {
+  LinearSolverStatus factorize_rows(const MatrixRows& A) override {
+    std::vector<Index> columns;
+    std::vector<double> values;
     std::vector<PetscInt> cols;  // PetscInt may be wider than kerf's Index
     auto set_row = [&](PetscInt r, InsertMode mode) {
-      Index begin = A.outerIndexPtr()[r], count = A.outerIndexPtr()[r + 1] - begin;
-      cols.assign(A.innerIndexPtr() + begin, A.innerIndexPtr() + begin + count);
-      check_petsc(MatSetValues(matrix_, 1, &r, count, cols.data(), A.valuePtr() + begin, mode), "MatSetValues");
+      A.row(static_cast<Index>(r), columns, values);
+      cols.assign(columns.begin(), columns.end());
+      check_petsc(MatSetValues(matrix_, 1, &r, static_cast<PetscInt>(cols.size()), cols.data(), values.data(), mode),
+                  "MatSetValues");
     };
     if (partial()) {
       // This rank's part of every row its cells touch; PETSc adds the ranks' parts.
