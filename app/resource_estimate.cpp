@@ -289,7 +289,8 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
   m.tables = tables / mb;
-  m.matrix = (matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
+  const double copies = scene.solve.solves_linear_systems() ? matrix_copies : 1.0;  // explicit: Lanczos's K alone
+  m.matrix = (copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
   m.whole = (64.0 * e.grid_points + 8.0 * 30.0 * e.dofs) / mb;  // the grid's columns; the state and work vectors
   return m;
 }
@@ -317,8 +318,9 @@ ResourceEstimate estimate_resources(const Scene& scene, int ranks) {
   estimate_body(scene, e, coupled);
   blame_the_finest_share(scene, e);
   e.dofs = d * e.nodes;
+  // Central differences assemble K too, once, for Lanczos's critical step.
+  e.nonzeros = e.dofs * d * coupled;
   if (scene.solve.solves_linear_systems()) {
-    e.nonzeros = e.dofs * d * coupled;
     const bool direct = linear_backend(scene.solve.linear_solver).direct;
     const double fill = d == 3 ? factor_fill_3d * std::cbrt(e.dofs) : factor_fill_2d * std::log2(e.dofs + 2.0);
     if (direct) e.factor_nonzeros = e.nonzeros * std::max(1.0, fill);
