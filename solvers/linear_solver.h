@@ -87,8 +87,8 @@ class LinearSolver {
 /// What a run on several MPI ranks adds to solve.petsc when the scene leaves
 /// it out: GAMG's prolongator unsmoothed and its coarse operators built all
 /// at once, so that its set-up's memory divides among the ranks (on the
-/// 513k-dof tet10 block the largest rank's peak is 0.50, 0.37, 0.30 of one
-/// rank's at 2, 3, 4 ranks, against 0.81, 0.58, 0.45 with PETSc's defaults;
+/// 513k-dof tet10 block the largest rank's peak is 0.53, 0.40, 0.33 of one
+/// rank's at 2, 3, 4 ranks, against 0.99, 0.70, 0.55 with PETSc's defaults;
 /// CG takes about 4 times the iterations). allatonce exists on several ranks alone.
 inline constexpr const char* petsc_rank_options = " -pc_gamg_agg_nsmooths 0 -matptap_via allatonce";
 
