@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A scene run under mpirun on 2 and 3 ranks (KERF_TEST_RANKS: others) gives the serial run's probes:
-# to TOLERANCE relative (1e-8 with a direct solve; the solver's tolerance
+# to TOLERANCE relative (1e-10 with a direct solve; the solver's tolerance
 # with CG), and says whether each rank assembled its own cells (PARTITIONED:
 # true or false; divided: its own cells of a mesh divided among the ranks,
 # each holding its piece). Its last ParaView step is a .pvtu whose pieces hold every
