@@ -1,5 +1,8 @@
 #include "discretization/body_factory.h"
 
+#include <algorithm>
+#include <string>
+
 #include "core/check.h"
 #include "discretization/fem/fem_body.h"
 #include "discretization/fem/fem_piece_body.h"
@@ -84,6 +87,15 @@ std::unique_ptr<DiscreteBody> make_fem_piece_body(const MpiContext& mpi, const S
   return std::make_unique<FemPieceBody>(scene, std::move(piece), mpi);
 }
 
+/// Under mpirun, a body kept whole on every rank says why in the run's notes (once: a growing cut builds it again).
+void note_how_ranks_hold_the_body(const MpiContext& mpi, const Scene& scene, RunReport& report) {
+  const std::string why = body_plan(scene).whole_on_every_rank;
+  if (!mpi.distributed() || why.empty()) return;
+  const std::string note =
+      "on " + std::to_string(mpi.ranks.count) + " MPI ranks the body is whole on every rank: " + why;
+  if (std::find(report.notes.begin(), report.notes.end(), note) == report.notes.end()) report.notes.push_back(note);
+}
+
 std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Scene& scene, SharedCuts cuts,
                                                  RunReport& report) {
   const BodyPlan plan = body_plan(scene);
@@ -115,6 +127,7 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time,
                                         const MpiContext& mpi) {
   ScopedTimer timer(report.phases, Phase::setup);
+  note_how_ranks_hold_the_body(mpi, scene, report);
   if (method_descriptor(scene.discretization.method).meshless)
     return make_meshless_body(mpi, scene, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,

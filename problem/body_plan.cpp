@@ -1,6 +1,7 @@
 #include "problem/body_plan.h"
 
 #include <algorithm>
+#include <string>
 
 namespace kerf {
 namespace {
@@ -10,14 +11,30 @@ bool has_boundary_loads(const Scene& scene) {
                      [](const BoundaryCondition& bc) { return !bc.is_dirichlet(); });
 }
 
-bool fem_mesh_divides(const Scene& scene) {
-  const auto keeps_whole = [](const Cut& cut) {
-    const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
-    return cut.fem == FemCut::split || grows;
-  };
-  return scene.discretization.method == Method::fem &&
-         std::none_of(scene.cuts.begin(), scene.cuts.end(), keeps_whole) &&
-         scene.discretization.fem.volumetric != FemVolumetric::averaged_nodal && scene.contact.empty();
+/// Why the body stays whole on every rank under mpirun (empty: its mesh is divided).
+std::string whole_on_every_rank(const Scene& scene) {
+  const DiscretizationOptions& d = scene.discretization;
+  if (d.method != Method::fem)
+    return std::string("discretization.method: ") + method_descriptor(d.method).name +
+           ": a meshless node set is not divided among the ranks yet; each rank holds it whole and computes its "
+           "share of the points";
+  for (std::size_t i = 0; i < scene.cuts.size(); ++i) {
+    const Cut& cut = scene.cuts[i];
+    const std::string key = "cuts." + std::to_string(i);
+    if (std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; }))
+      return key + ".times: a growing FEM cut meshes the body anew at each growth, so every rank builds and "
+                   "assembles the whole body; only the linear solve is shared";
+    if (cut.fem == FemCut::split)
+      return key + ".fem: split: cells split by a cut are not divided among the ranks yet; each rank holds the "
+                   "whole mesh and assembles its share of the cells";
+  }
+  if (d.fem.volumetric == FemVolumetric::averaged_nodal)
+    return "discretization.fem.volumetric: averaged_nodal: its nodal averages are not divided among the ranks "
+           "yet; each rank holds the whole mesh and assembles its share of the cells";
+  if (!scene.contact.empty())
+    return "contact: its boundary samples are not divided among the ranks yet; each rank holds the whole mesh and "
+           "assembles its share of the cells";
+  return "";
 }
 
 }  // namespace
@@ -31,7 +48,8 @@ BodyPlan body_plan(const Scene& scene) {
     // The element's mesh at FEM's size: FEM's cells, or the meshless nodes at its corners.
     plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
     plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
-    plan.divided_among_ranks = fem_mesh_divides(scene);
+    plan.whole_on_every_rank = whole_on_every_rank(scene);
+    plan.divided_among_ranks = plan.whole_on_every_rank.empty();
     return plan;
   }
   // A lattice of nodes; linear background cells where EFG integrates, loads act or spheres touch.
@@ -39,6 +57,7 @@ BodyPlan body_plan(const Scene& scene) {
                            !scene.contact.empty();
   if (needs_cells) plan.mesh = {true, 1, d.meshless.spacing};
   plan.size_key = "discretization.meshless.spacing", plan.size = d.meshless.spacing;
+  plan.whole_on_every_rank = whole_on_every_rank(scene);
   return plan;
 }
 

@@ -5,6 +5,8 @@
 // key sets the node count. The body factory builds this plan and the
 // resource estimate counts it, so the two cannot disagree on what a scene
 // makes.
+#include <string>
+
 #include "problem/scene.h"
 
 namespace kerf {
@@ -29,6 +31,9 @@ struct BodyPlan {
   /// that grows and so meshes the body anew, nodal stars of averaged
   /// pressure, contact's boundary samples).
   bool divided_among_ranks = false;
+  /// Otherwise, the key that keeps it whole on every rank and what that
+  /// means (a run's note under mpirun); empty when divided.
+  std::string whole_on_every_rank;
   /// The key whose size sets the node count, and its value (m).
   const char* size_key = "";
   double size = 0.0;

@@ -24,12 +24,18 @@ for ranks in ${KERF_TEST_RANKS:-2 3}; do
   python3 "$here/same_probes.py" "$out/serial/summary.json" "$out/ranks$ranks/summary.json" "$tolerance" || exit 1
   python3 - "$out/ranks$ranks/summary.json" "$ranks" "$partitioned" <<'CHECK' || exit 1
 import json, sys
-parallel = json.load(open(sys.argv[1]))["parallel"]
+summary = json.load(open(sys.argv[1]))
+parallel = summary["parallel"]
 print("parallel:", parallel)
 expected = {"ranks": int(sys.argv[2]), "partitioned": sys.argv[3] in ("true", "divided"),
             "mesh_divided": sys.argv[3] == "divided"}
 if any(parallel[key] != value for key, value in expected.items()):
     sys.exit(f"FAILED: the summary's parallel section says {parallel}, expected {expected}")
+# A body kept whole on every rank says so, naming the key; a divided one says nothing of the kind.
+whole = [n for n in summary.get("notes", []) if "the body is whole on every rank: " in n]
+if (sys.argv[3] == "divided") == bool(whole):
+    sys.exit(f"FAILED: notes {whole} for a body that is {'divided' if sys.argv[3] == 'divided' else 'whole'}")
+print("whole on every rank:", whole)
 CHECK
   "$pieces_check" "$out/serial/$(last_step "$out/serial")" "$out/ranks$ranks/$(last_step "$out/ranks$ranks")" \
     "$ranks" "$tolerance" || exit 1
