@@ -25,7 +25,7 @@ constexpr double base_mb = 110.0;                // the libraries (VTK, PETSc, g
 constexpr double gmsh_bytes_per_cell = 1500.0;   // gmsh's own structures while it meshes
 constexpr double shape_table_copies = 3.3;       // tables at points, nodes and boundary points, neighbour lists
 constexpr double smoothed_bytes_per_node = 45e3; // smoothing-cell samples and their shape functions
-constexpr double matrix_copies = 3.0;            // the pattern's indices, the full and the free-dof values
+constexpr double matrix_copies = 3.0;            // K (pattern and values), A on the free dofs, the preconditioner
 // A rank's share of the matrix and its algebraic multigrid, over 1/ranks of
 // one rank's: 1.57, 1.62, 1.59 at 2, 3, 4 ranks (the 513k-dof static tet10
 // block, its mesh divided, PETSc's GAMG defaults; results/scaling.md).
@@ -289,8 +289,7 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
   m.tables = tables / mb;
-  const double copies = scene.solve.solves_linear_systems() ? matrix_copies : 1.0;  // explicit: Lanczos's K alone
-  m.matrix = (copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
+  m.matrix = (matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
   m.whole = (64.0 * e.grid_points + 8.0 * 30.0 * e.dofs) / mb;  // the grid's columns; the state and work vectors
   return m;
 }
@@ -318,9 +317,8 @@ ResourceEstimate estimate_resources(const Scene& scene, int ranks) {
   estimate_body(scene, e, coupled);
   blame_the_finest_share(scene, e);
   e.dofs = d * e.nodes;
-  // Central differences assemble K too, once, for Lanczos's critical step.
-  e.nonzeros = e.dofs * d * coupled;
-  if (scene.solve.solves_linear_systems()) {
+  if (scene.solve.solves_linear_systems()) {  // central differences assemble no matrix (Lanczos is matrix-free)
+    e.nonzeros = e.dofs * d * coupled;
     const bool direct = linear_backend(scene.solve.linear_solver).direct;
     const double fill = d == 3 ? factor_fill_3d * std::cbrt(e.dofs) : factor_fill_2d * std::log2(e.dofs + 2.0);
     if (direct) e.factor_nonzeros = e.nonzeros * std::max(1.0, fill);

@@ -2,7 +2,7 @@
 // A = c_M M + c_K K on the free dofs, row by row, read from the whole-dof
 // matrices' values in K's pattern: what a backend that copies the matrix into
 // its own storage (PETSc) takes, so that kerf forms no A_ff beside the
-// backend's copy (16 bytes a nonzero: a quarter of a static run's peak).
+// backend's copy (16 bytes a nonzero: about a quarter of a static run's peak).
 #include <vector>
 
 #include "solvers/linear_solver.h"

@@ -73,7 +73,7 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
   linear.relative_tolerance = options.linear_tolerance;
   linear_tolerance_ = options.linear_tolerance;
   solver_ = make_linear_solver(linear, report_);
-  if (!solver_->copies_matrix()) free_.prepare_matrix(stiffness_);  // A_ff formed by kerf (system_rows otherwise)
+  if (!solver_->copies_matrix()) free_.prepare_matrix(stiffness_);  // A_ff formed by kerf (else backend_takes)
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
   solver_->set_row_share(free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node()));
   symmetric_ = mechanics_.symmetric_tangent();
