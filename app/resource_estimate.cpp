@@ -27,9 +27,13 @@ constexpr double shape_table_copies = 3.3;       // tables at points, nodes and 
 constexpr double smoothed_bytes_per_node = 45e3; // smoothing-cell samples and their shape functions
 constexpr double matrix_copies = 3.0;            // K (pattern and values), A on the free dofs, the preconditioner
 // A rank's share of the matrix and its algebraic multigrid, over 1/ranks of
-// one rank's: 1.57, 1.62, 1.59 at 2, 3, 4 ranks (the 513k-dof static tet10
-// block, its mesh divided, PETSc's GAMG defaults; results/scaling.md).
-constexpr double parallel_matrix_overhead = 1.6;
+// one rank's (the 513k-dof static tet10 block, its mesh divided;
+// results/scaling.md, second run of 2026-11-29): 1.96, 1.96, 1.93 at 2, 3, 4
+// ranks with PETSc's GAMG options as the scene writes them (its parallel
+// triple product), 0.92, 0.90, 0.93 with kerf's own when the scene leaves
+// solve.petsc out (petsc_rank_options).
+constexpr double parallel_matrix_overhead_as_written = 1.95;
+constexpr double parallel_matrix_overhead_kerf_options = 0.92;
 constexpr double factor_fill_3d = 0.17;          // nnz(L) / nnz(K) per dofs^(1/3) (nested dissection)
 constexpr double factor_fill_2d = 0.4;           // nnz(L) / nnz(K) per log2(dofs)
 
@@ -300,6 +304,8 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
 /// Either way the ranks share the matrix, at parallel_matrix_overhead.
 double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
   if (ranks <= 1) return base_mb + m.sum();
+  const double parallel_matrix_overhead =
+      scene.solve.petsc_written ? parallel_matrix_overhead_as_written : parallel_matrix_overhead_kerf_options;
   if (body_plan(scene).divided_among_ranks)
     return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
   return base_mb +
