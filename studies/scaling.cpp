@@ -8,7 +8,7 @@
 // process does on the whole machine). Ranks past the cores oversubscribe
 // them: their memory counts, not their time. The problems:
 //   static_tet10   strong scaling: the cantilever (10 x 2 x 2 cm, linear,
-//                  under its weight) in tet10, about 500 000 dofs (quick: 6 000);
+//                  under its weight) in tet10, about 500 000 dofs (quick: 10 000);
 //   static_tet10_lean  the same with kerf's own PETSc options under mpirun
 //                  (solve.petsc left out: GAMG's memory options), for the
 //                  memory a rank against 1/N;
@@ -19,7 +19,7 @@
 //                  about 150 000 dofs (quick: 3 000), 200 steps (quick: 20);
 //   explicit_nodal the cube by nodal integration and central differences,
 //                  about 200 000 dofs (quick: 4 000), 200 steps (quick: 20);
-//   static_efg     the cantilever by EFG, about 18 000 dofs (quick: 1 600);
+//   static_efg     the cantilever by EFG, about 18 000 dofs (quick: 2 800);
 //   weak_tet10     weak scaling: the cantilever with about 200 000 dofs a
 //                  rank (skipped in quick mode).
 // Every linear solve is PETSc CG + GAMG with the rigid-body near-null space,
