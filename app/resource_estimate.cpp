@@ -306,7 +306,7 @@ double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
   if (ranks <= 1) return base_mb + m.sum();
   const double parallel_matrix_overhead =
       scene.solve.petsc_written ? parallel_matrix_overhead_as_written : parallel_matrix_overhead_kerf_options;
-  if (body_plan(scene).divided_among_ranks)
+  if (body_plan(scene).divided_among_ranks())
     return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
   return base_mb +
          std::max(m.meshing + m.mesh, m.mesh + m.tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);

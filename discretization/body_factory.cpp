@@ -88,17 +88,16 @@ std::unique_ptr<DiscreteBody> make_fem_piece_body(const MpiContext& mpi, const S
 }
 
 /// Under mpirun, a body kept whole on every rank says why in the run's notes (once: a growing cut builds it again).
-void note_how_ranks_hold_the_body(const MpiContext& mpi, const Scene& scene, RunReport& report) {
-  const std::string why = body_plan(scene).whole_on_every_rank;
+void note_how_ranks_hold_the_body(const MpiContext& mpi, const BodyPlan& plan, RunReport& report) {
+  const std::string& why = plan.whole_on_every_rank;
   if (!mpi.distributed() || why.empty()) return;
   const std::string note =
       "on " + std::to_string(mpi.ranks.count) + " MPI ranks the body is whole on every rank: " + why;
   if (std::find(report.notes.begin(), report.notes.end(), note) == report.notes.end()) report.notes.push_back(note);
 }
 
-std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Scene& scene, SharedCuts cuts,
-                                                 RunReport& report) {
-  const BodyPlan plan = body_plan(scene);
+std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Scene& scene, const BodyPlan& plan,
+                                                 SharedCuts cuts, RunReport& report) {
   std::optional<Mesh> background;
   if (plan.mesh.made) {
     background =
@@ -127,13 +126,13 @@ std::unique_ptr<DiscreteBody> make_body(const Scene& scene, RunReport& report) {
 std::unique_ptr<DiscreteBody> make_body(const Scene& scene, SharedCuts cuts, RunReport& report, double time,
                                         const MpiContext& mpi) {
   ScopedTimer timer(report.phases, Phase::setup);
-  note_how_ranks_hold_the_body(mpi, scene, report);
-  if (method_descriptor(scene.discretization.method).meshless)
-    return make_meshless_body(mpi, scene, std::move(cuts), report);
+  const BodyPlan plan = body_plan(scene);
+  note_how_ranks_hold_the_body(mpi, plan, report);
+  if (plan.method->meshless) return make_meshless_body(mpi, scene, plan, std::move(cuts), report);
   // The scene's cuts as they stand at `time`: `remesh` ones shape the mesh,
   // `remove` ones delete cells, `split` ones split them (in the body).
   const std::vector<CutPiece> removed = cuts->fem_pieces(FemCut::remove, time);
-  if (mpi.distributed() && body_plan(scene).divided_among_ranks)
+  if (mpi.distributed() && plan.divided_among_ranks())
     return make_fem_piece_body(mpi, scene, *cuts, time, report);
   // Made on rank 0 alone under mpirun (its notes are rank 0's: it writes the summary).
   Mesh mesh =

@@ -49,7 +49,6 @@ BodyPlan body_plan(const Scene& scene) {
     plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
     plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
     plan.whole_on_every_rank = whole_on_every_rank(scene);
-    plan.divided_among_ranks = plan.whole_on_every_rank.empty();
     return plan;
   }
   // A lattice of nodes; linear background cells where EFG integrates, loads act or spheres touch.

@@ -30,7 +30,7 @@ struct BodyPlan {
   /// body without what a piece cannot give yet (cells split by a cut, a cut
   /// that grows and so meshes the body anew, nodal stars of averaged
   /// pressure, contact's boundary samples).
-  bool divided_among_ranks = false;
+  bool divided_among_ranks() const { return whole_on_every_rank.empty(); }
   /// Otherwise, the key that keeps it whole on every rank and what that
   /// means (a run's note under mpirun); empty when divided.
   std::string whole_on_every_rank;

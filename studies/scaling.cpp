@@ -85,13 +85,14 @@ Scene lean_cantilever(double size, int steps) {
   return scene;
 }
 
-/// The cantilever by EFG on a lattice of `spacing`.
-Scene efg_cantilever(double spacing, int steps) {
-  Scene scene = cantilever(spacing, steps);
-  scene.discretization.method = Method::efg;
+/// `scene` by the meshless `method` on a lattice of `spacing` (m).
+Scene on_lattice(Scene scene, Method method, double spacing) {
+  scene.discretization.method = method;
   scene.discretization.meshless.spacing = spacing;
   return scene;
 }
+
+Scene efg_cantilever(double spacing, int steps) { return on_lattice(cantilever(spacing, steps), Method::efg, spacing); }
 
 Scene corotational_cube(double size, int steps) {
   return study_scene::implicit_cube("scaling", size, steps, LinearSolverKind::petsc, same_gamg_on_every_rank, "probe");
@@ -107,12 +108,8 @@ Scene explicit_cube(double size, int steps) {
   return scene;
 }
 
-/// The explicit cube by nodal integration on a lattice of `spacing`.
 Scene explicit_nodal_cube(double spacing, int steps) {
-  Scene scene = explicit_cube(spacing, steps);
-  scene.discretization.method = Method::nodal;
-  scene.discretization.meshless.spacing = spacing;
-  return scene;
+  return on_lattice(explicit_cube(spacing, steps), Method::nodal, spacing);
 }
 
 const Phase phases[] = {Phase::setup, Phase::assembly, Phase::factorize, Phase::solve, Phase::output};

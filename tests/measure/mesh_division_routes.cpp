@@ -26,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "core/check.h"
 #include "geometry/box_mesher.h"
 #include "geometry/mesh_from_first_rank.h"
 #include "geometry/msh_reader.h"
@@ -72,6 +73,26 @@ struct Division {
   DM dm = nullptr;
 };
 
+/// Each of `divided`'s cells' number in rank 0's `serial` mesh, through the
+/// migration SF (what a route must know to send the cells' tet10 nodes);
+/// stops when one has none.
+std::vector<PetscInt> source_cells(DM serial, DM divided, PetscSF migration) {
+  PetscInt start = 0, end = 0, cell_end = 0, old_start = 0, old_end = 0, old_cells = 0;
+  check_petsc(DMPlexGetChart(divided, &start, &end), "DMPlexGetChart");
+  check_petsc(DMPlexGetHeightStratum(divided, 0, nullptr, &cell_end), "DMPlexGetHeightStratum");
+  check_petsc(DMPlexGetChart(serial, &old_start, &old_end), "DMPlexGetChart");
+  check_petsc(DMPlexGetHeightStratum(serial, 0, nullptr, &old_cells), "DMPlexGetHeightStratum");
+  std::vector<PetscInt> old_number(old_end - old_start), new_number(end - start, -1);
+  for (PetscInt p = old_start; p < old_end; ++p) old_number[p - old_start] = p;
+  if (!migration) return {old_number.begin(), old_number.begin() + old_cells};  // one rank: nothing moved
+  check_petsc(PetscSFBcastBegin(migration, MPIU_INT, old_number.data(), new_number.data(), MPI_REPLACE), "Bcast");
+  check_petsc(PetscSFBcastEnd(migration, MPIU_INT, old_number.data(), new_number.data(), MPI_REPLACE), "Bcast");
+  new_number.resize(cell_end);
+  for (const PetscInt n : new_number)
+    KERF_CHECK(n >= 0, "DMPlex's migration gave a cell of this rank no cell of rank 0's mesh");
+  return new_number;
+}
+
 /// DMPlex's partition and overlap of rank 0's mesh.
 Division dmplex_route(Mesh&& whole) {
   PetscInt cells = 0, vertices = 0;
@@ -93,25 +114,14 @@ Division dmplex_route(Mesh&& whole) {
   check_petsc(DMPlexGetPartitioner(serial, &partitioner), "DMPlexGetPartitioner");
   check_petsc(PetscPartitionerSetType(partitioner, PETSCPARTITIONERPTSCOTCH), "PetscPartitionerSetType");
   check_petsc(DMPlexDistribute(serial, 1, &migration, &divided), "DMPlexDistribute");
-  // Each new cell's number in rank 0's mesh, through the migration SF.
   Division division;
   division.dm = divided ? divided : serial;
-  DM mine = division.dm;
-  PetscInt start = 0, end = 0, cell_end = 0, old_start = 0, old_end = 0;
-  check_petsc(DMPlexGetChart(mine, &start, &end), "DMPlexGetChart");
-  check_petsc(DMPlexGetHeightStratum(mine, 0, nullptr, &cell_end), "DMPlexGetHeightStratum");
-  check_petsc(DMPlexGetChart(serial, &old_start, &old_end), "DMPlexGetChart");
-  std::vector<PetscInt> old_number(old_end - old_start), new_number(end - start, -1);
-  for (PetscInt p = old_start; p < old_end; ++p) old_number[p - old_start] = p;
-  if (migration) {
-    check_petsc(PetscSFBcastBegin(migration, MPIU_INT, old_number.data(), new_number.data(), MPI_REPLACE), "Bcast");
-    check_petsc(PetscSFBcastEnd(migration, MPIU_INT, old_number.data(), new_number.data(), MPI_REPLACE), "Bcast");
-  }
+  const std::vector<PetscInt> source = source_cells(serial, division.dm, migration);
   IS numbering = nullptr;  // owned cells >= 0, ghosts -(g + 1); DMPlex's to keep
-  check_petsc(DMPlexGetCellNumbering(mine, &numbering), "DMPlexGetCellNumbering");
+  check_petsc(DMPlexGetCellNumbering(division.dm, &numbering), "DMPlexGetCellNumbering");
   const PetscInt* number = nullptr;
   check_petsc(ISGetIndices(numbering, &number), "ISGetIndices");
-  for (PetscInt c = 0; c < cell_end; ++c) (number[c] >= 0 ? division.own_cells : division.ghost_cells) += 1;
+  for (std::size_t c = 0; c < source.size(); ++c) (number[c] >= 0 ? division.own_cells : division.ghost_cells) += 1;
   check_petsc(ISRestoreIndices(numbering, &number), "ISRestoreIndices");
   if (divided) check_petsc(DMDestroy(&serial), "DMDestroy");
   malloc_trim(0);  // as kerf's route does on rank 0 once the whole mesh is gone
