@@ -1,5 +1,7 @@
 #include "app/probe_set.h"
 
+#include <algorithm>
+
 #include "core/check.h"
 #include "discretization/body_capabilities.h"
 
@@ -69,6 +71,18 @@ bool ProbeSet::needs_energy() const {
   for (const Resolved& r : probes_)
     if (r.probe.field == ProbeField::energy) return true;
   return false;
+}
+
+std::optional<std::vector<Index>> ProbeSet::dofs_read() const {
+  std::vector<Index> dofs;
+  for (const Resolved& r : probes_) {
+    if (r.probe.field != ProbeField::displacement) return std::nullopt;
+    for (Index n : r.interpolation.nodes)
+      for (int i = 0; i < dim_; ++i) dofs.push_back(dim_ * n + i);
+  }
+  std::sort(dofs.begin(), dofs.end());
+  dofs.erase(std::unique(dofs.begin(), dofs.end()), dofs.end());
+  return dofs;
 }
 
 std::vector<double> ProbeSet::probe_values(const Resolved& r, const SolverState& state, const Vector& reaction,

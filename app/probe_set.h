@@ -2,6 +2,7 @@
 // The scene's probes resolved against a discretized body: what each one reads
 // from the solver state, as CSV columns and as the summary's final values.
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,10 @@ class ProbeSet {
   std::vector<std::string> columns() const;  // without the leading "time"
   bool needs_reaction() const;
   bool needs_energy() const;
+  /// The dofs of the state the probes read, ascending, when they read
+  /// displacements alone; nullopt when they need the whole state (a
+  /// reaction, an energy, a contact reading).
+  std::optional<std::vector<Index>> dofs_read() const;
   /// `reaction` may be empty when no probe needs it.
   std::vector<double> values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
   nlohmann::ordered_json final_values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;

@@ -27,21 +27,29 @@ void RunObserver::reset_loads(const RunParts& run, const SolverState& state) {
   if (run.probes->needs_energy()) run.stepper->applied_load(state, load_before_);
 }
 
-void RunObserver::before_step(const RunParts& run, const SolverState& state) {
-  if (run.probes->needs_energy()) u_before_ = state.u;
+void RunObserver::before_step(const RunParts& run, SolverState& state) {
+  if (!run.probes->needs_energy()) return;
+  run.stepper->complete_state(state);
+  u_before_ = state.u;
 }
 
-void RunObserver::after_step(const RunParts& run, const SolverState& state) {
+void RunObserver::after_step(const RunParts& run, SolverState& state) {
   // Before a cut changes the dofs' meaning: the work over this step.
   if (!run.probes->needs_energy()) return;
+  run.stepper->complete_state(state);
   run.stepper->applied_load(state, load_after_);
   energy_.external_work += 0.5 * (load_before_ + load_after_).dot(state.u - u_before_);
   load_before_.swap(load_after_);
 }
 
-void RunObserver::write(const RunParts& run, const SolverState& state, std::size_t growths, RunReport& report) {
+void RunObserver::write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report) {
   ScopedTimer timer(report.phases, Phase::output);
   const ProbeSet& probes = *run.probes;
+  const std::optional<std::vector<Index>> read = probes.dofs_read();
+  if (vtk_ || !read)
+    run.stepper->complete_state(state);
+  else
+    run.stepper->complete_state_at(state, *read, false);
   if (probes.needs_reaction()) reaction_ = run.stepper->reaction(state);
   if (probes.needs_energy()) {
     energy_.kinetic = run.stepper->kinetic_energy(state);

@@ -28,12 +28,14 @@ class RunObserver {
   /// changed the discretization (the loads as the new one integrates them).
   void reset_loads(const RunParts& run, const SolverState& state);
   /// Around each step: the trapezoidal work of the applied loads over it.
-  void before_step(const RunParts& run, const SolverState& state);
-  void after_step(const RunParts& run, const SolverState& state);
+  /// Collective with the energy probe (they complete the state).
+  void before_step(const RunParts& run, SolverState& state);
+  void after_step(const RunParts& run, SolverState& state);
 
   /// A probes.csv row and, with ParaView output, the snapshots; `growths`:
   /// the cut growths so far.
-  void write(const RunParts& run, const SolverState& state, std::size_t growths, RunReport& report);
+  /// Collective: the state is completed where they read it (Stepper::complete_state_at).
+  void write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report);
   /// The probes' values at the last write, as summary.json holds them.
   nlohmann::ordered_json final_probes(const RunParts& run, const SolverState& state) const;
 

@@ -188,7 +188,10 @@ RunOutcome run_scene(const Scene& scene, const RunOptions& options) {
     report.parallel.memory.at_end = peak_memory_mb();
     report.parallel.memory_by_rank = memory_of_every_rank(report.parallel.memory, options.mpi.ranks);
     if (const auto* figures = capability<DiscretizationFigures>(*run.body)) figures->add_figures(report.extras);
-    if (options.keep_final_body) outcome.final_body = final_body(run, state);
+    if (options.keep_final_body) {
+      run.stepper->complete_state(state);
+      outcome.final_body = final_body(run, state);
+    }
     write_report(report, summary);
     summary["status"] = "ok";
     if (writes) write_file_atomically(summary_path, summary_text(summary));

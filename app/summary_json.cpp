@@ -101,6 +101,7 @@ void write_report(const RunReport& report, json& summary) {
   summary["parallel"] = {{"ranks", r.ranks},
                          {"partitioned", r.partitioned},
                          {"mesh_divided", r.mesh_divided},
+                         {"state_in_pieces", r.state_in_pieces},
                          {"rank0_owned_rows", r.owned_rows},
                          {"rank0_touched_rows", r.touched_rows},
                          {"rank0_peak_memory_mb", peak_memory_mb()}};
@@ -177,6 +178,7 @@ void read_counts_and_ranks(const json& summary, RunReport& report) {
   r.ranks = ranks.at("ranks").get<int>();
   r.partitioned = ranks.at("partitioned").get<bool>();
   r.mesh_divided = ranks.value("mesh_divided", false);  // summaries before issue 38 lack it
+  r.state_in_pieces = ranks.value("state_in_pieces", false);  // and before its ghosted explicit state
   r.owned_rows = ranks.at("rank0_owned_rows").get<Index>();
   r.touched_rows = ranks.at("rank0_touched_rows").get<Index>();
   if (ranks.contains("peak_memory_mb_by_rank")) {

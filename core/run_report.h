@@ -34,6 +34,7 @@ struct RankCounts {
   int ranks = 1;
   bool partitioned = false;  // each rank assembled its own cells (else every rank the whole)
   bool mesh_divided = false; // each rank held its piece of the mesh (else every rank the whole mesh)
+  bool state_in_pieces = false;  // an explicit step's vectors were each rank's piece, only ghosts exchanged
   Index owned_rows = 0;      // rank 0's rows
   Index touched_rows = 0;    // rows rank 0 computes values in: its own and its ghosts'
   MemoryMarks memory;                       // this rank's (the summary: rank 0's)

@@ -152,6 +152,25 @@ class PartitionedAssembly {
   virtual const std::vector<Index>& touched_nodes() const = 0;
 };
 
+/// A partitioned body whose rank holds a piece of it (own nodes, then the
+/// ghosts its cells touch) and computes on vectors over the piece's dofs, so
+/// that an explicit step needs the whole vectors on no rank: its forces are
+/// summed between the ranks that share a ghost (solvers/ghost_exchange.h).
+class PieceLayout {
+ public:
+  virtual ~PieceLayout() = default;
+  /// The global dof of each of the piece's dofs: the own ones first (this
+  /// rank's rows, ascending), then the ghosts'.
+  virtual const std::vector<Index>& piece_dofs() const = 0;
+  virtual Index own_dof_count() const = 0;
+  /// This rank's cells' internal force at the piece's u, over the piece's dofs (partial at shared nodes).
+  virtual void piece_internal_force(const Vector& u, Vector& f) const = 0;
+  /// This rank's cells' lumped mass, over the piece's dofs.
+  virtual Vector piece_lumped_mass() const = 0;
+  /// The whole external force's entries at the piece's dofs (complete, not a part).
+  virtual void piece_external_force(double t, Vector& f) const = 0;
+};
+
 /// The body's capability C, or null.
 template <class C>
 const C* capability(const DiscreteBody& body) {

@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "discretization/body_capabilities.h"
+#include "solvers/explicit_layout.h"
 #include "solvers/largest_eigenvalue.h"
 #include "solvers/sparse_assembly.h"
 
@@ -23,10 +24,13 @@ class CentralDifferenceStepper final : public Stepper {
   CentralDifferenceStepper(MechanicalSystem& mechanics, const StepperSettings& settings, RunReport& report,
                            const Vector& carried_mode)
       : mechanics_(mechanics), report_(report), options_(settings.solve), alpha_(settings.damping_mass),
-        beta_(settings.damping_stiffness), constrained_(mechanics.dirichlet(0.0)), dt_location_(settings.dt_location) {
+        beta_(settings.damping_stiffness), constrained_(mechanics.dirichlet(0.0)),
+        layout_(explicit_layout(mechanics)), layout_constrained_(layout_->constrained(constrained_)),
+        dt_location_(settings.dt_location) {
     ScopedTimer timer(report.phases, Phase::setup);
+    report.parallel.state_in_pieces = layout_->piece();
     report.add_stage("mass");
-    mass_ = mechanics_.lumped_mass();
+    mass_ = layout_->lumped_mass();
     KERF_CHECK((mass_.array() > 0.0).all(), "the lumped mass has a zero or negative entry: central differences need a "
                "positive diagonal mass");
     inverse_mass_ = mass_.cwiseInverse();
@@ -44,6 +48,7 @@ class CentralDifferenceStepper final : public Stepper {
       critical_step_ = estimate_critical_step();
       fresh_estimate_ = true;
     }
+    whole_mass_ = Vector();  // a piece layout's: built again if a reaction asks
   }
 
   void initialize(SolverState& s) override {
@@ -61,29 +66,46 @@ class CentralDifferenceStepper final : public Stepper {
     const Index n = mechanics_.dof_count();
     s.u = Vector::Zero(n);
     s.v = Vector::Zero(n);
-    for (const DirichletDof& d : constrained_) s.u[d.dof] = d.value;
-    mechanics_.external_force(0.0, f_ext_);
-    mechanics_.internal_force(s.u, f_int_);
-    acceleration(s.v, s.a);
+    s.a = Vector::Zero(n);
+    SolverState& x = working(s);
+    x.u = Vector::Zero(layout_->size());
+    x.v = Vector::Zero(layout_->size());
+    for (const DirichletDof& d : layout_constrained_) x.u[d.dof] = d.value;
+    layout_->external_force(0.0, f_ext_);
+    layout_->internal_force(x.u, f_int_);
+    acceleration(x.v, x.a);
+    complete_state(s);
   }
 
   /// One step of dt, in substeps_ equal substeps when a cut lowered the critical step below dt.
   void advance(SolverState& s, double dt) override {
     const double t0 = s.t, h = dt / substeps_;
-    for (int k = 1; k <= substeps_; ++k) substep(s, h, k == substeps_ ? t0 + dt : t0 + k * h);
+    SolverState& x = working(s);
+    for (int k = 1; k <= substeps_; ++k) substep(x, h, k == substeps_ ? t0 + dt : t0 + k * h);
+    s.t = x.t;
     ++s.step;
-    if (!s.u.allFinite())
+    if (!layout_->all_finite(x.u))
       throw Diverged(detail::concat("central-difference step ", s.step, " (t = ", s.t,
                                     " s): the displacement became NaN or infinite: the explicit solution diverged"));
   }
 
+  /// The state's whole vectors from the piece's, at `dofs` (every dof when `all`). Collective.
+  void complete_state_at(SolverState& s, std::span<const Index> dofs, bool all) override {
+    if (!layout_->piece()) return;
+    layout_->to_whole(piece_state_.u, dofs, all, s.u);
+    layout_->to_whole(piece_state_.v, dofs, all, s.v);
+    layout_->to_whole(piece_state_.a, dofs, all, s.a);
+  }
+
   void discretization_changed(SolverState& s) override {
+    // Only bodies whole on every rank change (a growing cut keeps the mesh whole: problem/body_plan.h).
+    KERF_CHECK(!layout_->piece(), "internal: the discretization of a body divided among the ranks changed");
     // A cut can raise omega_max (steep enriched weights next to its front, a
     // sliver cell of a remesh): the critical step is estimated again (a
     // remeshed body's new stepper has just done so) and a dt above it is taken
     // in equal substeps below it, so a softening cut cannot make the run
     // unstable. Costs a Lanczos run of force evaluations a growth.
-    mass_ = mechanics_.lumped_mass();
+    mass_ = layout_->lumped_mass();
     inverse_mass_ = mass_.cwiseInverse();
     if (!fresh_estimate_) critical_step_ = estimate_critical_step_again();
     fresh_estimate_ = false;
@@ -109,12 +131,15 @@ class CentralDifferenceStepper final : public Stepper {
     acceleration(s.v, s.a);
   }
 
-  double kinetic_energy(const SolverState& s) const override { return 0.5 * s.v.dot(mass_.cwiseProduct(s.v)); }
+  double kinetic_energy(const SolverState& s) const override {
+    return 0.5 * layout_->weighted_square(working(s).v, mass_);
+  }
+  /// From the whole state (complete_state first).
   Vector reaction(const SolverState& s) override {
-    Vector r;
+    Vector r, f_ext;
     mechanics_.internal_force(s.u, r);
-    mechanics_.external_force(s.t, f_ext_);
-    return r + mass_.cwiseProduct(s.a + alpha_ * s.v) - f_ext_;
+    mechanics_.external_force(s.t, f_ext);
+    return r + whole_mass().cwiseProduct(s.a + alpha_ * s.v) - f_ext;
   }
   void applied_load(const SolverState& s, Vector& f) const override { mechanics_.external_force(s.t, f); }
   double time_step() const override { return options_.dt; }
@@ -143,7 +168,7 @@ class CentralDifferenceStepper final : public Stepper {
     report_.add_stage("critical step");
     // Lanczos needs a symmetric K: scene validation refuses VCI with central differences.
     KERF_CHECK(mechanics_.symmetric_tangent(), "internal: central differences with an unsymmetric stiffness");
-    const EigenvalueBound omega2 = largest_eigenvalue(stiffness_at_rest(), mass_,
+    const EigenvalueBound omega2 = largest_eigenvalue(stiffness_at_rest(), whole_mass(),
                                                       FreeDofs(mechanics_.dof_count(), constrained_), lanczos_options());
     mode_ = omega2.ritz_vector;
     const double lanczos_step = 2.0 / std::sqrt(omega2.upper_bound);
@@ -163,7 +188,7 @@ class CentralDifferenceStepper final : public Stepper {
     options.tolerance = reestimate_tolerance_;
     options.start = &mode_;
     const EigenvalueBound omega2 =
-        largest_eigenvalue(stiffness_at_rest(), mass_, FreeDofs(mechanics_.dof_count(), constrained_), options);
+        largest_eigenvalue(stiffness_at_rest(), whole_mass(), FreeDofs(mechanics_.dof_count(), constrained_), options);
     mode_ = omega2.ritz_vector;
     return damped_critical_step(2.0 / std::sqrt(omega2.upper_bound), beta_);
   }
@@ -217,9 +242,10 @@ class CentralDifferenceStepper final : public Stepper {
     free.add_to_full(mode_, q);
     mechanics_.internal_force(q * (probe_length_ / std::max(q.lpNorm<Eigen::Infinity>(), 1e-300)), force);
     if (free.free_count() == 0) return 0;
+    const Vector& mass = whole_mass();
     Index best = free.free_dofs().front();
     for (Index d : free.free_dofs())
-      if (std::abs(force[d] * inverse_mass_[d]) > std::abs(force[best] * inverse_mass_[best])) best = d;
+      if (std::abs(force[d] / mass[d]) > std::abs(force[best] / mass[best])) best = d;
     return best;
   }
 
@@ -228,15 +254,15 @@ class CentralDifferenceStepper final : public Stepper {
     half_velocity_ = s.v + 0.5 * h * s.a;
     zero_constrained(half_velocity_);
     s.u += h * half_velocity_;
-    mechanics_.external_force(t1, f_ext_);
+    layout_->external_force(t1, f_ext_);
     // f_int(u + beta v) = f_int(u) + beta K v to first order: stiffness damping in one evaluation.
     {
       ScopedTimer timer(report_.phases, Phase::assembly);  // the explicit step's phase studies compare
       if (beta_ != 0.0) {
         damped_u_ = s.u + beta_ * half_velocity_;
-        mechanics_.internal_force(damped_u_, f_int_);
+        layout_->internal_force(damped_u_, f_int_);
       } else {
-        mechanics_.internal_force(s.u, f_int_);
+        layout_->internal_force(s.u, f_int_);
       }
     }
     acceleration(half_velocity_, s.a);
@@ -251,14 +277,28 @@ class CentralDifferenceStepper final : public Stepper {
     zero_constrained(a);
   }
   void zero_constrained(Vector& x) const {
-    for (const DirichletDof& d : constrained_) x[d.dof] = 0.0;
+    for (const DirichletDof& d : layout_constrained_) x[d.dof] = 0.0;
+  }
+
+  /// The state the steps advance: the piece's vectors, or the whole state itself.
+  SolverState& working(SolverState& s) { return layout_->piece() ? piece_state_ : s; }
+  const SolverState& working(const SolverState& s) const { return layout_->piece() ? piece_state_ : s; }
+  /// The lumped mass over every dof (the critical step's Lanczos runs on whole vectors).
+  const Vector& whole_mass() {
+    if (!layout_->piece()) return mass_;
+    if (whole_mass_.size() == 0) whole_mass_ = mechanics_.lumped_mass();
+    return whole_mass_;
   }
 
   const MechanicalSystem& mechanics_;
   RunReport& report_;
   SolveOptions options_;
   double alpha_, beta_;
-  std::vector<DirichletDof> constrained_;
+  std::vector<DirichletDof> constrained_;  // over every dof
+  std::unique_ptr<ExplicitLayout> layout_;  // where the steps' vectors live: every dof, or this rank's piece
+  std::vector<DirichletDof> layout_constrained_;
+  SolverState piece_state_;                // u, v, a over the piece's dofs (a piece layout)
+  Vector whole_mass_;                      // a piece layout's lumped mass over every dof, when asked
   Vector mass_, inverse_mass_, f_ext_, f_int_, half_velocity_, damped_u_;
   Vector force_at_rest_, scaled_;  // stiffness_at_rest's f_int(0) and e x
   double critical_step_ = 0.0;

@@ -12,7 +12,6 @@ struct RankSum::Petsc {
   Vec owned = nullptr;       // the sum, each rank holding its range
   Vec all = nullptr;         // the whole sum on this rank
   VecScatter to_all = nullptr;
-  Vec number = nullptr;      // one entry a rank, for sums of numbers
   std::vector<PetscInt> rows;  // the entries this rank adds
   std::vector<PetscScalar> values;  // their values, gathered for the call
   Index size = 0;  // entries of the vectors summed
@@ -20,7 +19,6 @@ struct RankSum::Petsc {
     if (to_all) VecScatterDestroy(&to_all);
     if (all) VecDestroy(&all);
     if (owned) VecDestroy(&owned);
-    if (number) VecDestroy(&number);
   }
 };
 
@@ -30,7 +28,6 @@ RankSum::RankSum(Index size, Index owned_begin, Index owned_end, const std::vect
   petsc_->size = size;
   check_petsc(VecCreateMPI(PETSC_COMM_WORLD, owned_end - owned_begin, size, &petsc_->owned), "VecCreateMPI");
   check_petsc(VecScatterCreateToAll(petsc_->owned, &petsc_->to_all, &petsc_->all), "VecScatterCreateToAll");
-  check_petsc(VecCreateMPI(PETSC_COMM_WORLD, 1, PETSC_DETERMINE, &petsc_->number), "VecCreateMPI");
   petsc_->rows.assign(touched.begin(), touched.end());
   petsc_->values.resize(touched.size());
 }
@@ -55,27 +52,6 @@ void RankSum::sum(Vector& v) const {
   check_petsc(VecGetArrayRead(all, &whole), "VecGetArrayRead");
   v = Eigen::Map<const Vector>(whole, v.size());
   check_petsc(VecRestoreArrayRead(all, &whole), "VecRestoreArrayRead");
-}
-
-void RankSum::set_number(double x) const {
-  PetscScalar* mine = nullptr;
-  check_petsc(VecGetArray(petsc_->number, &mine), "VecGetArray");
-  mine[0] = x;
-  check_petsc(VecRestoreArray(petsc_->number, &mine), "VecRestoreArray");
-}
-
-double RankSum::sum(double x) const {
-  set_number(x);
-  PetscScalar total = 0.0;
-  check_petsc(VecSum(petsc_->number, &total), "VecSum");
-  return total;
-}
-
-double RankSum::smallest(double x) const {
-  set_number(x);
-  PetscReal least = 0.0;
-  check_petsc(VecMin(petsc_->number, nullptr, &least), "VecMin");
-  return least;
 }
 
 std::vector<std::vector<double>> values_of_every_rank(const std::vector<double>& mine, const RankShare& ranks) {

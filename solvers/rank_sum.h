@@ -9,6 +9,7 @@
 
 #include "core/rank_share.h"
 #include "core/types.h"
+#include "solvers/rank_numbers.h"
 
 namespace kerf {
 
@@ -23,12 +24,12 @@ class RankSum {
 
   /// v holds this rank's part (zero outside `touched`); on return, the sum of every rank's.
   void sum(Vector& v) const;
-  double sum(double x) const;
+  double sum(double x) const { return numbers_.sum(x); }
   /// The smallest of every rank's x.
-  double smallest(double x) const;
+  double smallest(double x) const { return numbers_.smallest(x); }
 
  private:
-  void set_number(double x) const;  // this rank's entry of the vector of numbers
+  RankNumbers numbers_;
   struct Petsc;  // PETSc's objects and the gathered entries (reused by every call)
   std::unique_ptr<Petsc> petsc_;
 };

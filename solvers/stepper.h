@@ -3,6 +3,7 @@
 // whatever the method. A static analysis is a stepper too: its steps are load
 // increments in pseudo-time 0..1.
 #include <memory>
+#include <span>
 #include <string>
 
 #include "core/run_report.h"
@@ -33,6 +34,13 @@ class Stepper {
   /// and makes the state consistent again (the acceleration of explicit and
   /// Newmark schemes). u and v carry over unchanged.
   virtual void discretization_changed(SolverState& state) = 0;
+  /// Makes the state's whole vectors (u, v, a over every dof) current at
+  /// `dofs`, or at every dof when `all`: a stepper that keeps them in pieces
+  /// (central differences on a mesh divided among the ranks) fills them only
+  /// when asked, and a step sends only ghosts' values. Collective: the same
+  /// call on every rank. The others' are always current.
+  virtual void complete_state_at(SolverState&, std::span<const Index> /*dofs*/, bool /*all*/) {}
+  void complete_state(SolverState& state) { complete_state_at(state, {}, true); }
   /// Linear solves Newton made in the last step (0 for explicit).
   virtual int last_iterations() const { return 0; }
   /// The time step the run uses (s); static: 1 / load_steps.

@@ -57,6 +57,8 @@ FemPieceBody::FemPieceBody(const Scene& scene, MeshPiece piece, const MpiContext
   for (Index n : body_->touched_nodes()) touched_.push_back(global_node_[n]);
   std::sort(touched_.begin(), touched_.end());
   share_loads_and_constraints(scene);
+  for (Index d = 0; d < dim_ * static_cast<Index>(global_node_.size()); ++d) piece_dofs_.push_back(global_dof(d));
+  piece_load_ = local(load_);
 }
 
 void FemPieceBody::share_positions_and_neighbours(const Mesh& mesh) {

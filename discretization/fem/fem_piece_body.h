@@ -21,7 +21,8 @@ namespace kerf {
 class FemPieceBody final : public DiscreteBody,
                            public ElementStepBound,
                            public MatrixAssembly,
-                           public PartitionedAssembly {
+                           public PartitionedAssembly,
+                           public PieceLayout {
  public:
   /// Collective: every rank builds its piece's body at once.
   FemPieceBody(const Scene& scene, MeshPiece piece, const MpiContext& mpi);
@@ -62,6 +63,12 @@ class FemPieceBody final : public DiscreteBody,
   std::pair<Index, Index> owned_nodes() const override { return {first_node_, first_node_ + own_nodes_}; }
   const std::vector<Index>& touched_nodes() const override { return touched_; }
 
+  const std::vector<Index>& piece_dofs() const override { return piece_dofs_; }
+  Index own_dof_count() const override { return dim_ * own_nodes_; }
+  void piece_internal_force(const Vector& u, Vector& f) const override { body_->internal_force(u, f); }
+  Vector piece_lumped_mass() const override { return body_->lumped_mass(); }
+  void piece_external_force(double, Vector& f) const override { f = piece_load_; }
+
  private:
   /// The whole run's selection, global node numbers ascending; throws, as
   /// select_points does, when it takes no node anywhere. Collective.
@@ -96,6 +103,8 @@ class FemPieceBody final : public DiscreteBody,
   std::unique_ptr<FemBody> body_;
   std::vector<Index> touched_;      // global numbers, ascending
   Vector load_;
+  std::vector<Index> piece_dofs_;   // the global dof of each of the piece's
+  Vector piece_load_;               // load_ at the piece's dofs
   std::vector<DirichletDof> dirichlet_;
   mutable Vector local_u_, piece_force_;  // buffers of the calls made every step
 };

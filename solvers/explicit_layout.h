@@ -1,0 +1,45 @@
+#pragma once
+// Where an explicit stepper keeps its vectors. On one rank, or when the body
+// is whole on every rank, over every dof (MechanicalSystem's vectors, summed
+// over the ranks by RankSum). When the mesh is divided among the ranks, over
+// this rank's piece alone (own dofs, then its ghosts'), so that a step sends
+// only the ghosts' forces between the ranks that share them and does no work
+// of the whole vector's length (solvers/ghost_exchange.h).
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "solvers/mechanical_system.h"
+
+namespace kerf {
+
+class ExplicitLayout {
+ public:
+  virtual ~ExplicitLayout() = default;
+  /// Whether the vectors are the piece's (else every dof's, the SolverState's own).
+  virtual bool piece() const = 0;
+  /// Entries of the layout's vectors.
+  virtual Index size() const = 0;
+  /// f_int(u), complete at every entry. Collective.
+  virtual void internal_force(const Vector& u, Vector& f) const = 0;
+  /// The lumped mass, complete at every entry. Collective.
+  virtual Vector lumped_mass() const = 0;
+  virtual void external_force(double t, Vector& f) const = 0;
+  /// The entries of `whole` (over every dof) that are the layout's, in its order.
+  virtual Vector restricted(const Vector& whole) const = 0;
+  /// The constrained dofs as the layout's entries.
+  virtual std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const = 0;
+  /// sum x_i^2 w_i over every dof of the run, each counted once. Collective.
+  virtual double weighted_square(const Vector& x, const Vector& w) const = 0;
+  /// Whether x is finite on every rank. Collective.
+  virtual bool all_finite(const Vector& x) const = 0;
+  /// x's values at the whole vector's entries `dofs` (every entry when
+  /// `all`) into `whole`, sized to every dof. The same call on every rank.
+  virtual void to_whole(const Vector& x, std::span<const Index> dofs, bool all, Vector& whole) const = 0;
+};
+
+/// The piece's layout when the body has one (PieceLayout) and no solver-side
+/// terms (contact), else the whole one.
+std::unique_ptr<ExplicitLayout> explicit_layout(const MechanicalSystem& mechanics);
+
+}  // namespace kerf

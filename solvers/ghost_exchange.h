@@ -1,0 +1,55 @@
+#pragma once
+// Vectors laid out as a rank's piece of a divided mesh holds them: its own
+// entries (one contiguous range of the global numbering, the ranks' ranges
+// in rank order) followed by its ghosts' (entries other ranks own that its
+// cells touch). Through a PETSc ghosted vector (VecCreateGhost): an entry
+// summed over the ranks crosses only between the ranks that share it, not
+// the whole vector to every rank as RankSum's does. Collective calls.
+#include <map>
+#include <memory>
+#include <span>
+#include <vector>
+
+#include "core/types.h"
+#include "solvers/rank_numbers.h"
+
+namespace kerf {
+
+class GhostExchange {
+ public:
+  /// `own_count` entries from this rank's range, then `ghosts` (global
+  /// numbers of entries other ranks own), out of `global_size`.
+  GhostExchange(Index global_size, Index own_count, std::span<const Index> ghosts);
+  ~GhostExchange();
+  GhostExchange(const GhostExchange&) = delete;
+  GhostExchange& operator=(const GhostExchange&) = delete;
+
+  Index local_size() const { return own_count_ + ghost_count_; }
+  Index own_count() const { return own_count_; }
+
+  /// `local` holds this rank's parts (own and ghost entries); on return each
+  /// entry, own or ghost, holds the sum of every rank's part of it (the
+  /// owner's sum, copied to the ghosts: equal to the last bit).
+  void sum_and_share(Vector& local) const;
+  /// The sum of every rank's x.
+  double sum(double x) const { return numbers_.sum(x); }
+  /// The whole vector's entries at `entries` (global numbers, the same list
+  /// on every rank), written into `whole` (sized global_size; its other
+  /// entries untouched), from every rank's own entries of `local`.
+  void gather(const Vector& local, std::span<const Index> entries, Vector& whole) const;
+  /// Every entry of the whole vector on every rank.
+  void gather_all(const Vector& local, Vector& whole) const;
+
+ private:
+  struct Petsc;
+  struct Gather;  // a scatter to some entries on every rank, kept per list asked
+  const Gather& gather_of(std::span<const Index> entries, bool all) const;
+  void gather_with(const Gather& gather, const Vector& local, Vector& whole) const;
+
+  Index global_size_, own_count_, ghost_count_;
+  std::unique_ptr<Petsc> petsc_;
+  mutable std::map<std::vector<Index>, std::unique_ptr<Gather>> gathers_;
+  RankNumbers numbers_;
+};
+
+}  // namespace kerf
