@@ -98,8 +98,6 @@ class CentralDifferenceStepper final : public Stepper {
   }
 
   void discretization_changed(SolverState& s) override {
-    // Only bodies whole on every rank change (a growing cut keeps the mesh whole: problem/body_plan.h).
-    KERF_CHECK(!layout_->piece(), "internal: the discretization of a body divided among the ranks changed");
     // A cut can raise omega_max (steep enriched weights next to its front, a
     // sliver cell of a remesh): the critical step is estimated again (a
     // remeshed body's new stepper has just done so) and a dt above it is taken
@@ -121,14 +119,15 @@ class CentralDifferenceStepper final : public Stepper {
     substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(needed)));
     solver.substeps_max = std::max(solver.substeps_max, substeps_);
     // A remeshed body comes with a new stepper, which has read no load yet.
-    mechanics_.external_force(s.t, f_ext_);
+    SolverState& x = working(s);
+    layout_->external_force(s.t, f_ext_);
     if (beta_ != 0.0) {
-      damped_u_ = s.u + beta_ * s.v;
-      mechanics_.internal_force(damped_u_, f_int_);
+      damped_u_ = x.u + beta_ * x.v;
+      layout_->internal_force(damped_u_, f_int_);
     } else {
-      mechanics_.internal_force(s.u, f_int_);
+      layout_->internal_force(x.u, f_int_);
     }
-    acceleration(s.v, s.a);
+    acceleration(x.v, x.a);
   }
 
   double kinetic_energy(const SolverState& s) const override {

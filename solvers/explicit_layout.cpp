@@ -27,10 +27,55 @@ class WholeLayout final : public ExplicitLayout {
   const MechanicalSystem& mechanics_;
 };
 
+/// A partitioned body whole on every rank (meshless, or FEM kept whole) as a
+/// piece: its own nodes' dofs, then those of the nodes its cells or points
+/// reach. Its force is computed on whole-length buffers, whose entries it
+/// reads and writes are the piece's alone (PartitionedAssembly's touched
+/// nodes); the step's vectors and what crosses between the ranks are the piece's.
+class WholeBodyAsPiece final : public PieceLayout {
+ public:
+  WholeBodyAsPiece(const DiscreteBody& body, const PartitionedAssembly& part) : body_(body) {
+    const int dim = body.dofs_per_node();
+    const auto [begin, end] = part.owned_nodes();
+    for (Index d = dim * begin; d < dim * end; ++d) dofs_.push_back(d);
+    for (Index n : part.touched_nodes())
+      if (n < begin || n >= end)
+        for (int i = 0; i < dim; ++i) dofs_.push_back(dim * n + i);
+    own_ = dim * (end - begin);
+    u_ = Vector::Zero(body.dof_count());
+  }
+  const std::vector<Index>& piece_dofs() const override { return dofs_; }
+  Index own_dof_count() const override { return own_; }
+  void piece_internal_force(const Vector& u, Vector& f) const override {
+    for (std::size_t k = 0; k < dofs_.size(); ++k) u_[dofs_[k]] = u[k];
+    body_.internal_force(u_, f_);
+    restrict_to_piece(f_, f);
+  }
+  Vector piece_lumped_mass() const override {
+    Vector m;
+    restrict_to_piece(body_.lumped_mass(), m);
+    return m;
+  }
+  void piece_external_force(double t, Vector& f) const override {
+    body_.external_force(t, f_);
+    restrict_to_piece(f_, f);
+  }
+
+ private:
+  void restrict_to_piece(const Vector& whole, Vector& piece) const {
+    piece.resize(static_cast<Index>(dofs_.size()));
+    for (std::size_t k = 0; k < dofs_.size(); ++k) piece[k] = whole[dofs_[k]];
+  }
+  const DiscreteBody& body_;
+  std::vector<Index> dofs_;
+  Index own_ = 0;
+  mutable Vector u_, f_;  // whole-length: the body's own arguments
+};
+
 class PieceLayoutVectors final : public ExplicitLayout {
  public:
-  PieceLayoutVectors(const MechanicalSystem& mechanics, const PieceLayout& piece)
-      : piece_(piece), dofs_(piece.piece_dofs()), own_(piece.own_dof_count()),
+  PieceLayoutVectors(const MechanicalSystem& mechanics, std::unique_ptr<PieceLayout> adapted, const PieceLayout& piece)
+      : adapted_(std::move(adapted)), piece_(piece), dofs_(piece.piece_dofs()), own_(piece.own_dof_count()),
         exchange_(mechanics.dof_count(), own_,
                   std::span<const Index>(dofs_).subspan(static_cast<std::size_t>(own_))) {}
   bool piece() const override { return true; }
@@ -63,6 +108,7 @@ class PieceLayoutVectors final : public ExplicitLayout {
   }
 
  private:
+  std::unique_ptr<PieceLayout> adapted_;  // a whole body seen as a piece, or null
   const PieceLayout& piece_;
   const std::vector<Index>& dofs_;
   Index own_;
@@ -84,9 +130,14 @@ std::vector<DirichletDof> PieceLayoutVectors::constrained(const std::vector<Diri
 }  // namespace
 
 std::unique_ptr<ExplicitLayout> explicit_layout(const MechanicalSystem& mechanics) {
-  const PieceLayout* piece = capability<PieceLayout>(mechanics.body());
-  if (piece && !mechanics.contact()) return std::make_unique<PieceLayoutVectors>(mechanics, *piece);
-  return std::make_unique<WholeLayout>(mechanics);
+  if (mechanics.contact()) return std::make_unique<WholeLayout>(mechanics);  // the spheres' dofs are every rank's
+  if (const PieceLayout* piece = capability<PieceLayout>(mechanics.body()))
+    return std::make_unique<PieceLayoutVectors>(mechanics, nullptr, *piece);
+  const PartitionedAssembly* part = capability<PartitionedAssembly>(mechanics.body());
+  if (!part || !part->partitioned()) return std::make_unique<WholeLayout>(mechanics);
+  auto adapted = std::make_unique<WholeBodyAsPiece>(mechanics.body(), *part);
+  const PieceLayout& piece = *adapted;
+  return std::make_unique<PieceLayoutVectors>(mechanics, std::move(adapted), piece);
 }
 
 }  // namespace kerf

@@ -1,10 +1,12 @@
 #pragma once
-// Where an explicit stepper keeps its vectors. On one rank, or when the body
-// is whole on every rank, over every dof (MechanicalSystem's vectors, summed
-// over the ranks by RankSum). When the mesh is divided among the ranks, over
-// this rank's piece alone (own dofs, then its ghosts'), so that a step sends
-// only the ghosts' forces between the ranks that share them and does no work
-// of the whole vector's length (solvers/ghost_exchange.h).
+// Where an explicit stepper keeps its vectors. On one rank, or with contact,
+// over every dof (MechanicalSystem's vectors, summed over the ranks by
+// RankSum). When each rank computes its own part of the body (a mesh divided
+// among the ranks, or a partitioned body whole on every rank), over this
+// rank's piece alone: its own dofs, then its ghosts' (the dofs its cells or
+// points reach that other ranks own). A step then sends only the ghosts'
+// forces between the ranks that share them (solvers/ghost_exchange.h), and
+// its vector work is the piece's length.
 #include <memory>
 #include <span>
 #include <vector>
@@ -38,8 +40,8 @@ class ExplicitLayout {
   virtual void to_whole(const Vector& x, std::span<const Index> dofs, bool all, Vector& whole) const = 0;
 };
 
-/// The piece's layout when the body has one (PieceLayout) and no solver-side
-/// terms (contact), else the whole one.
+/// The piece's layout when the body has one (PieceLayout) or is partitioned
+/// (PartitionedAssembly), and no solver-side terms (contact); else the whole one.
 std::unique_ptr<ExplicitLayout> explicit_layout(const MechanicalSystem& mechanics);
 
 }  // namespace kerf

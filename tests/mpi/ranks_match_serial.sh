@@ -38,8 +38,10 @@ whole = [n for n in summary.get("notes", []) if "the body is whole on every rank
 if (sys.argv[3] == "divided") == bool(whole):
     sys.exit(f"FAILED: notes {whole} for a body that is {'divided' if sys.argv[3] == 'divided' else 'whole'}")
 print("whole on every rank:", whole)
-# Central differences on a divided mesh step each rank's piece, exchanging only the ghosts' forces.
-pieces = sys.argv[3] == "divided" and summary["scene"]["solve"]["integrator"] == "central-difference"
+# Central differences on a partitioned body without contact step each rank's piece, exchanging only ghosts' forces.
+scene = summary["scene"]
+pieces = (sys.argv[3] in ("true", "divided") and scene["solve"]["integrator"] == "central-difference"
+          and scene["solve"]["analysis"] == "dynamic" and not scene["contact"])
 if parallel["state_in_pieces"] != pieces:
     sys.exit(f"FAILED: state_in_pieces is {parallel['state_in_pieces']}, expected {pieces}")
 CHECK
