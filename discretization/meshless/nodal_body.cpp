@@ -372,6 +372,7 @@ NodalForceTables NodalBody::force_tables() const {
   NodalForceTables t;
   t.nodes = node_count();
   std::tie(t.pass_begin, t.pass_end) = own_nodes_;
+  if (partitioned()) t.touched = touched_nodes_;
   t.start = table.neighbours.start.data();
   t.index = table.neighbours.index.data();
   t.slots = static_cast<Index>(table.neighbours.index.size());

@@ -146,7 +146,10 @@ void nodal_force_3d(const NodalForceTables& t, const MaterialLaw& law, const Vec
   static const NodesPass best = best_nodes_pass();
   const NodesPass pass = unit == VectorUnit::best ? best : nodes_pass_baseline;
   const Index N = t.nodes;
+  const bool every = t.touched.empty();
+  const Index count = every ? N : static_cast<Index>(t.touched.size());
   f.resize(3 * N);
+  if (!every) f.setZero();  // the nodes no term reaches: the rows of the other ranks' parts
   scratch.u4.resize(4 * static_cast<std::size_t>(N) + 4);
   // 32-byte aligned starts inside the buffers (vector<double> guarantees 16).
   double* u4 = const_cast<double*>(aligned_32(scratch.u4));
@@ -158,20 +161,26 @@ void nodal_force_3d(const NodalForceTables& t, const MaterialLaw& law, const Vec
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
     double* all = const_cast<double*>(aligned_32(scratch.forces4));
     double* mine = all + thread * stride;
-    std::fill(mine, mine + stride, 0.0);
+    if (every)
+      std::fill(mine, mine + stride, 0.0);
+    else
+      for (Index I : t.touched) std::fill(mine + 4 * I, mine + 4 * I + 4, 0.0);
 #pragma omp for schedule(static)
-    for (Index I = 0; I < N; ++I) {
+    for (Index k = 0; k < count; ++k) {
+      const Index I = every ? k : t.touched[k];
       for (int i = 0; i < 3; ++i) u4[4 * I + i] = u[3 * I + i];
       u4[4 * I + 3] = 0.0;
     }
     pass(t, law, u4, mine);  // ends with the loop's barrier: every thread's forces complete
 #pragma omp for schedule(static)
-    for (Index I = 0; I < N; ++I)
+    for (Index k = 0; k < count; ++k) {
+      const Index I = every ? k : t.touched[k];
       for (int i = 0; i < 3; ++i) {
         double sum = 0.0;
         for (int r = 0; r < threads; ++r) sum += all[r * stride + 4 * I + i];
         f[3 * I + i] = sum;
       }
+    }
   }
 }
 

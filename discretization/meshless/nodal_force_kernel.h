@@ -21,6 +21,7 @@ namespace kerf {
 struct NodalForceTables {
   Index nodes = 0;
   Index pass_begin = 0, pass_end = 0;    // the nodes whose terms the pass adds (an MPI rank's own)
+  std::span<const Index> touched;        // the nodes those terms reach, ascending (empty: every node)
   const Index* start = nullptr;          // neighbour lists (CSR), N + 1
   const Index* index = nullptr;
   Index slots = 0;
@@ -48,7 +49,9 @@ std::vector<double> padded_positions(std::span<const Vec3> positions);
 /// baseline x86-64 one (tests compare the two).
 enum class VectorUnit { best, baseline };
 
-/// f = f_int(u) (3 per node).
+/// f = f_int(u) (3 per node): the pass's nodes' terms, zero at nodes they do
+/// not reach. Only the touched nodes' u is read, copied and summed: an MPI
+/// rank's work outside the pass is the length of its piece, not of the whole.
 void nodal_force_3d(const NodalForceTables& tables, const MaterialLaw& law, const Vector& u, Vector& f,
                     NodalForceScratch& scratch, VectorUnit unit = VectorUnit::best);
 
