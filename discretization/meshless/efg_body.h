@@ -67,7 +67,12 @@ class EfgBody final : public MeshlessBody,
 
   PointIntegration points_;
   RankShare share_;
-  std::pair<Index, Index> own_points_, own_nodes_;  // all of them in a serial run
+  /// The background cells whose points this rank integrates: those most of
+  /// whose points' support nodes are its own (set per cell: every cell in a serial run).
+  std::vector<char> cells_of_this_rank() const;
+
+  std::vector<Index> own_points_;                   // ascending: every point in a serial run
+  std::pair<Index, Index> own_nodes_;               // its rows: every node in a serial run
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
   PointSchedule own_schedule_;                      // its points' part of points_.schedule()
   std::unique_ptr<WeakBoundaryConditions> constraints_;  // null with essential: parameters

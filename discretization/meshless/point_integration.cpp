@@ -136,6 +136,13 @@ PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points
   return schedule;
 }
 
+PointSchedule only_groups(PointSchedule schedule, std::span<const char> own_group) {
+  for (auto& colour : schedule.colours)
+    for (std::vector<Index>& cube : colour)
+      std::erase_if(cube, [&](Index p) { return !own_group[p / schedule.group_size]; });
+  return schedule;
+}
+
 PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nodes, Index group_size) {
   KERF_CHECK(group_size >= 1, "internal: a point group of ", group_size, " points");
   const Index P = table.point_count(), groups = (P + group_size - 1) / group_size;

@@ -6,7 +6,8 @@
 # each holding its piece). Its last ParaView step is a .pvtu whose pieces hold every
 # serial cell once with the serial displacements (PIECES_CHECK: the program
 # pieces_match_serial); with KERF_TEST_VTK=off no ParaView output, so that
-# the probes are read every step from the state alone. usage:
+# the probes are read every step from the state alone; with KERF_TEST_MAX_TOUCHED=F rank 0 computes
+# values in at most F times its own rows (its cells or points fall mostly in its own rows). usage:
 #   ranks_match_serial.sh KERF PIECES_CHECK OUT_DIR TOLERANCE PARTITIONED SCENE [--set KEY=VALUE]...
 set -u
 kerf=$1 pieces_check=$2 out=$3 tolerance=$4 partitioned=$5 scene=$6
@@ -24,7 +25,7 @@ for ranks in ${KERF_TEST_RANKS:-2 3}; do
     --out "$out/ranks$ranks" --quiet || fail "the run on $ranks ranks failed"
   echo "$ranks ranks against serial:"
   python3 "$here/same_probes.py" "$out/serial/summary.json" "$out/ranks$ranks/summary.json" "$tolerance" || exit 1
-  python3 - "$out/ranks$ranks/summary.json" "$ranks" "$partitioned" <<'CHECK' || exit 1
+  python3 - "$out/ranks$ranks/summary.json" "$ranks" "$partitioned" "${KERF_TEST_MAX_TOUCHED:-}" <<'CHECK' || exit 1
 import json, sys
 summary = json.load(open(sys.argv[1]))
 parallel = summary["parallel"]
@@ -38,6 +39,10 @@ whole = [n for n in summary.get("notes", []) if "the body is whole on every rank
 if (sys.argv[3] == "divided") == bool(whole):
     sys.exit(f"FAILED: notes {whole} for a body that is {'divided' if sys.argv[3] == 'divided' else 'whole'}")
 print("whole on every rank:", whole)
+if sys.argv[4]:
+    touched, owned = parallel["rank0_touched_rows"], parallel["rank0_owned_rows"]
+    if touched > float(sys.argv[4]) * owned:
+        sys.exit(f"FAILED: rank 0 computes values in {touched} rows, more than {sys.argv[4]} x its own {owned}")
 # Central differences on a partitioned body without contact step each rank's piece, exchanging only ghosts' forces.
 scene = summary["scene"]
 pieces = (sys.argv[3] in ("true", "divided") and scene["solve"]["integrator"] == "central-difference"
