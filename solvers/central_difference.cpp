@@ -105,6 +105,7 @@ class CentralDifferenceStepper final : public Stepper {
     // unstable. Costs a Lanczos run of force evaluations a growth.
     mass_ = layout_->lumped_mass();
     inverse_mass_ = mass_.cwiseInverse();
+    whole_mass_ = Vector();  // a piece layout's, of the discretization before the change
     if (!fresh_estimate_) critical_step_ = estimate_critical_step_again();
     fresh_estimate_ = false;
     SolverCounters& solver = report_.solver;
