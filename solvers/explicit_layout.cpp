@@ -17,7 +17,6 @@ class WholeLayout final : public ExplicitLayout {
   void internal_force(const Vector& u, Vector& f) const override { mechanics_.internal_force(u, f); }
   Vector lumped_mass() const override { return mechanics_.lumped_mass(); }
   void external_force(double t, Vector& f) const override { mechanics_.external_force(t, f); }
-  Vector restricted(const Vector& whole) const override { return whole; }
   std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const override { return whole; }
   double weighted_square(const Vector& x, const Vector& w) const override { return x.dot(w.cwiseProduct(x)); }
   bool all_finite(const Vector& x) const override { return x.allFinite(); }
@@ -90,11 +89,6 @@ class PieceLayoutVectors final : public ExplicitLayout {
     return m;
   }
   void external_force(double t, Vector& f) const override { piece_.piece_external_force(t, f); }
-  Vector restricted(const Vector& whole) const override {
-    Vector x(size());
-    for (Index k = 0; k < size(); ++k) x[k] = whole[dofs_[k]];
-    return x;
-  }
   std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const override;
   double weighted_square(const Vector& x, const Vector& w) const override {
     return exchange_.sum(x.head(own_).dot(w.head(own_).cwiseProduct(x.head(own_))));

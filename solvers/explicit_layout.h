@@ -27,8 +27,6 @@ class ExplicitLayout {
   /// The lumped mass, complete at every entry. Collective.
   virtual Vector lumped_mass() const = 0;
   virtual void external_force(double t, Vector& f) const = 0;
-  /// The entries of `whole` (over every dof) that are the layout's, in its order.
-  virtual Vector restricted(const Vector& whole) const = 0;
   /// The constrained dofs as the layout's entries.
   virtual std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const = 0;
   /// sum x_i^2 w_i over every dof of the run, each counted once. Collective.
