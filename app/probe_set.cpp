@@ -33,6 +33,7 @@ ProbeSet::ProbeSet(const Scene& scene, const MechanicalSystem& mechanics)
     }
     probes_.push_back(std::move(r));
   }
+  displacement_dofs_ = displacement_dofs();
 }
 
 std::vector<std::string> ProbeSet::columns() const {
@@ -73,7 +74,7 @@ bool ProbeSet::needs_energy() const {
   return false;
 }
 
-std::optional<std::vector<Index>> ProbeSet::dofs_read() const {
+std::optional<std::vector<Index>> ProbeSet::displacement_dofs() const {
   std::vector<Index> dofs;
   for (const Resolved& r : probes_) {
     if (r.probe.field != ProbeField::displacement) return std::nullopt;

@@ -27,10 +27,10 @@ class ProbeSet {
   std::vector<std::string> columns() const;  // without the leading "time"
   bool needs_reaction() const;
   bool needs_energy() const;
-  /// The dofs of the state the probes read, ascending, when they read
-  /// displacements alone; nullopt when they need the whole state (a
-  /// reaction, an energy, a contact reading).
-  std::optional<std::vector<Index>> dofs_read() const;
+  /// The dofs of u the probes read, ascending, when they read displacements
+  /// alone; nullopt when they need the whole state (a reaction, an energy, a
+  /// contact reading).
+  const std::optional<std::vector<Index>>& displacement_dofs_read() const { return displacement_dofs_; }
   /// `reaction` may be empty when no probe needs it.
   std::vector<double> values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
   nlohmann::ordered_json final_values(const SolverState& state, const Vector& reaction, const EnergyState& energy) const;
@@ -45,8 +45,11 @@ class ProbeSet {
                                    const EnergyState& energy) const;
   const MechanicalSystem& mechanics_;
   const WeakConstraints* weak_;  // the body's, or null
+  /// displacement_dofs_read's list, made once.
+  std::optional<std::vector<Index>> displacement_dofs() const;
   std::vector<Resolved> probes_;
   int dim_;
+  std::optional<std::vector<Index>> displacement_dofs_;
 };
 
 }  // namespace kerf

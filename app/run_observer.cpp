@@ -45,11 +45,10 @@ void RunObserver::after_step(const RunParts& run, SolverState& state) {
 void RunObserver::write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report) {
   ScopedTimer timer(report.phases, Phase::output);
   const ProbeSet& probes = *run.probes;
-  const std::optional<std::vector<Index>> read = probes.dofs_read();
-  if (vtk_ || !read)
-    run.stepper->complete_state(state);
+  if (const auto& read = probes.displacement_dofs_read(); read && !vtk_)
+    run.stepper->complete_displacement_at(state, *read);
   else
-    run.stepper->complete_state_at(state, *read, false);
+    run.stepper->complete_state(state);
   if (probes.needs_reaction()) reaction_ = run.stepper->reaction(state);
   if (probes.needs_energy()) {
     energy_.kinetic = run.stepper->kinetic_energy(state);

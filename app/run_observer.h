@@ -34,7 +34,7 @@ class RunObserver {
 
   /// A probes.csv row and, with ParaView output, the snapshots; `growths`:
   /// the cut growths so far.
-  /// Collective: the state is completed where they read it (Stepper::complete_state_at).
+  /// Collective: the state is completed where they read it (Stepper::complete_state).
   void write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report);
   /// The probes' values at the last write, as summary.json holds them.
   nlohmann::ordered_json final_probes(const RunParts& run, const SolverState& state) const;

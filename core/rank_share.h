@@ -24,6 +24,12 @@ inline std::pair<Index, Index> even_part(Index n, int rank, int count) {
   return {begin, begin + base + (rank < extra ? 1 : 0)};
 }
 
+/// The rank whose even_part of n items holds item i.
+inline int even_part_owner(Index n, Index i, int count) {
+  const Index base = n / count, extra = n % count, long_items = extra * (base + 1);
+  return static_cast<int>(i < long_items ? i / (base + 1) : extra + (i - long_items) / base);
+}
+
 /// A rank's touched nodes: those its own cells or points reach (`reached`,
 /// one mark a node) and its owned range, ascending.
 inline std::vector<Index> touched_node_list(std::vector<char> reached, std::pair<Index, Index> owned) {

@@ -63,10 +63,6 @@ class CentralDifferenceStepper final : public Stepper {
       throw SharedFailure(why.str());
     }
     fresh_estimate_ = false;
-    const Index n = mechanics_.dof_count();
-    s.u = Vector::Zero(n);
-    s.v = Vector::Zero(n);
-    s.a = Vector::Zero(n);
     SolverState& x = working(s);
     x.u = Vector::Zero(layout_->size());
     x.v = Vector::Zero(layout_->size());
@@ -89,12 +85,14 @@ class CentralDifferenceStepper final : public Stepper {
                                     " s): the displacement became NaN or infinite: the explicit solution diverged"));
   }
 
-  /// The state's whole vectors from the piece's, at `dofs` (every dof when `all`). Collective.
-  void complete_state_at(SolverState& s, std::span<const Index> dofs, bool all) override {
-    if (!layout_->piece()) return;
-    layout_->to_whole(piece_state_.u, dofs, all, s.u);
-    layout_->to_whole(piece_state_.v, dofs, all, s.v);
-    layout_->to_whole(piece_state_.a, dofs, all, s.a);
+  /// The state's whole vectors from the piece's. Collective.
+  void complete_state(SolverState& s) override {
+    layout_->to_whole(piece_state_.u, s.u);
+    layout_->to_whole(piece_state_.v, s.v);
+    layout_->to_whole(piece_state_.a, s.a);
+  }
+  void complete_displacement_at(SolverState& s, std::span<const Index> dofs) override {
+    layout_->to_whole_at(piece_state_.u, dofs, s.u);
   }
 
   void discretization_changed(SolverState& s) override {

@@ -20,7 +20,8 @@ class WholeLayout final : public ExplicitLayout {
   std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const override { return whole; }
   double weighted_square(const Vector& x, const Vector& w) const override { return x.dot(w.cwiseProduct(x)); }
   bool all_finite(const Vector& x) const override { return x.allFinite(); }
-  void to_whole(const Vector& x, std::span<const Index>, bool, Vector& whole) const override { whole = x; }
+  void to_whole(const Vector&, Vector&) const override {}
+  void to_whole_at(const Vector&, std::span<const Index>, Vector&) const override {}
 
  private:
   const MechanicalSystem& mechanics_;
@@ -94,11 +95,9 @@ class PieceLayoutVectors final : public ExplicitLayout {
     return exchange_.sum(x.head(own_).dot(w.head(own_).cwiseProduct(x.head(own_))));
   }
   bool all_finite(const Vector& x) const override { return exchange_.sum(x.allFinite() ? 0.0 : 1.0) == 0.0; }
-  void to_whole(const Vector& x, std::span<const Index> dofs, bool all, Vector& whole) const override {
-    if (all)
-      exchange_.gather_all(x, whole);
-    else
-      exchange_.gather(x, dofs, whole);
+  void to_whole(const Vector& x, Vector& whole) const override { exchange_.gather_all(x, whole); }
+  void to_whole_at(const Vector& x, std::span<const Index> dofs, Vector& whole) const override {
+    exchange_.gather(x, dofs, whole);
   }
 
  private:

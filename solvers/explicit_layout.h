@@ -33,9 +33,11 @@ class ExplicitLayout {
   virtual double weighted_square(const Vector& x, const Vector& w) const = 0;
   /// Whether x is finite on every rank. Collective.
   virtual bool all_finite(const Vector& x) const = 0;
-  /// x's values at the whole vector's entries `dofs` (every entry when
-  /// `all`) into `whole`, sized to every dof. The same call on every rank.
-  virtual void to_whole(const Vector& x, std::span<const Index> dofs, bool all, Vector& whole) const = 0;
+  /// A piece's x as the whole vector over every dof, into `whole` (the whole
+  /// layout's vectors are the state's own: nothing to do). The same call on every rank.
+  virtual void to_whole(const Vector& x, Vector& whole) const = 0;
+  /// The same at the whole vector's entries `dofs` alone (ascending, the same list on every rank).
+  virtual void to_whole_at(const Vector& x, std::span<const Index> dofs, Vector& whole) const = 0;
 };
 
 /// The piece's layout when the body has one (PieceLayout) or is partitioned

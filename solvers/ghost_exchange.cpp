@@ -19,6 +19,7 @@ struct GhostExchange::Petsc {
 struct GhostExchange::Gather {
   bool all = false;            // every entry, in order
   std::vector<Index> entries;  // else where the gathered values go
+  std::vector<Index> own_places;  // which of this rank's own entries the scatter reads
   Vec gathered = nullptr;      // the asked entries on this rank
   VecScatter scatter = nullptr;
   ~Gather() {
@@ -70,18 +71,20 @@ void GhostExchange::sum_and_share(Vector& local) const {
   copy_local_form(ghosted, local, false);
 }
 
-const GhostExchange::Gather& GhostExchange::gather_of(std::span<const Index> entries, bool all) const {
-  std::vector<Index> key(entries.begin(), entries.end());
-  if (all) key = {-1};  // no list of entries is this one
-  std::unique_ptr<Gather>& gather = gathers_[key];
-  if (gather) return *gather;
-  gather = std::make_unique<Gather>();
-  if (all) {
-    gather->all = true;
-    check_petsc(VecScatterCreateToAll(petsc_->ghosted, &gather->scatter, &gather->gathered), "VecScatterCreateToAll");
-    return *gather;
-  }
-  gather->entries = key;
+std::unique_ptr<GhostExchange::Gather> GhostExchange::make_gather_all() const {
+  auto gather = std::make_unique<Gather>();
+  gather->all = true;
+  check_petsc(VecScatterCreateToAll(petsc_->ghosted, &gather->scatter, &gather->gathered), "VecScatterCreateToAll");
+  return gather;
+}
+
+std::unique_ptr<GhostExchange::Gather> GhostExchange::make_gather(std::span<const Index> entries) const {
+  auto gather = std::make_unique<Gather>();
+  gather->entries.assign(entries.begin(), entries.end());
+  PetscInt first = 0, end = 0;
+  check_petsc(VecGetOwnershipRange(petsc_->ghosted, &first, &end), "VecGetOwnershipRange");
+  for (Index e : entries)
+    if (e >= first && e < end) gather->own_places.push_back(e - first);
   const std::vector<PetscInt> rows(entries.begin(), entries.end());
   IS wanted = nullptr;
   check_petsc(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(rows.size()), rows.data(), PETSC_COPY_VALUES,
@@ -91,16 +94,19 @@ const GhostExchange::Gather& GhostExchange::gather_of(std::span<const Index> ent
   const PetscErrorCode code = VecScatterCreate(petsc_->ghosted, wanted, gather->gathered, nullptr, &gather->scatter);
   ISDestroy(&wanted);
   check_petsc(code, "VecScatterCreate");
-  return *gather;
+  return gather;
 }
 
 void GhostExchange::gather_with(const Gather& gather, const Vector& local, Vector& whole) const {
   KERF_CHECK(local.size() == local_size(), "internal: a ghosted vector of ", local.size(), " entries; expected ",
              local_size());
   Vec ghosted = petsc_->ghosted;
-  PetscScalar* own = nullptr;  // the global vector's array: this rank's own entries
+  PetscScalar* own = nullptr;  // the global vector's array: this rank's own entries; the scatter reads the asked ones
   check_petsc(VecGetArray(ghosted, &own), "VecGetArray");
-  std::copy(local.data(), local.data() + own_count_, own);
+  if (gather.all)
+    std::copy(local.data(), local.data() + own_count_, own);
+  else
+    for (Index k : gather.own_places) own[k] = local[k];
   check_petsc(VecRestoreArray(ghosted, &own), "VecRestoreArray");
   check_petsc(VecScatterBegin(gather.scatter, ghosted, gather.gathered, INSERT_VALUES, SCATTER_FORWARD),
               "VecScatterBegin");
@@ -118,11 +124,14 @@ void GhostExchange::gather_with(const Gather& gather, const Vector& local, Vecto
 }
 
 void GhostExchange::gather(const Vector& local, std::span<const Index> entries, Vector& whole) const {
-  gather_with(gather_of(entries, false), local, whole);
+  if (!listed_ || !std::equal(entries.begin(), entries.end(), listed_->entries.begin(), listed_->entries.end()))
+    listed_ = make_gather(entries);  // collective: every rank asks the same list at once
+  gather_with(*listed_, local, whole);
 }
 
 void GhostExchange::gather_all(const Vector& local, Vector& whole) const {
-  gather_with(gather_of({}, true), local, whole);
+  if (!all_) all_ = make_gather_all();
+  gather_with(*all_, local, whole);
 }
 
 }  // namespace kerf

@@ -5,7 +5,6 @@
 // cells touch). Through a PETSc ghosted vector (VecCreateGhost): an entry
 // summed over the ranks crosses only between the ranks that share it, not
 // the whole vector to every rank as RankSum's does. Collective calls.
-#include <map>
 #include <memory>
 #include <span>
 #include <vector>
@@ -33,22 +32,24 @@ class GhostExchange {
   void sum_and_share(Vector& local) const;
   /// The sum of every rank's x.
   double sum(double x) const { return numbers_.sum(x); }
-  /// The whole vector's entries at `entries` (global numbers, the same list
-  /// on every rank), written into `whole` (sized global_size; its other
-  /// entries untouched), from every rank's own entries of `local`.
+  /// The whole vector's entries at `entries` (global numbers, ascending, the
+  /// same list on every rank), written into `whole` (sized global_size; its
+  /// other entries untouched), from every rank's own entries of `local`. Its
+  /// scatter is kept while the list stays the same (a run's probes).
   void gather(const Vector& local, std::span<const Index> entries, Vector& whole) const;
   /// Every entry of the whole vector on every rank.
   void gather_all(const Vector& local, Vector& whole) const;
 
  private:
   struct Petsc;
-  struct Gather;  // a scatter to some entries on every rank, kept per list asked
-  const Gather& gather_of(std::span<const Index> entries, bool all) const;
+  struct Gather;  // a scatter of some entries, or all, to every rank
+  std::unique_ptr<Gather> make_gather(std::span<const Index> entries) const;
+  std::unique_ptr<Gather> make_gather_all() const;
   void gather_with(const Gather& gather, const Vector& local, Vector& whole) const;
 
   Index global_size_, own_count_, ghost_count_;
   std::unique_ptr<Petsc> petsc_;
-  mutable std::map<std::vector<Index>, std::unique_ptr<Gather>> gathers_;
+  mutable std::unique_ptr<Gather> all_, listed_;  // built when first asked
   RankNumbers numbers_;
 };
 

@@ -34,13 +34,15 @@ class Stepper {
   /// and makes the state consistent again (the acceleration of explicit and
   /// Newmark schemes). u and v carry over unchanged.
   virtual void discretization_changed(SolverState& state) = 0;
-  /// Makes the state's whole vectors (u, v, a over every dof) current at
-  /// `dofs`, or at every dof when `all`: a stepper that keeps them in pieces
-  /// (central differences on a mesh divided among the ranks) fills them only
-  /// when asked, and a step sends only ghosts' values. Collective: the same
-  /// call on every rank. The others' are always current.
-  virtual void complete_state_at(SolverState&, std::span<const Index> /*dofs*/, bool /*all*/) {}
-  void complete_state(SolverState& state) { complete_state_at(state, {}, true); }
+  /// Makes the state's whole vectors (u, v, a over every dof) current: a
+  /// stepper that keeps them in pieces (central differences on a
+  /// partitioned body) fills them only when asked, so that a step sends only
+  /// ghosts' values. Collective: the same call on every rank. The other
+  /// steppers' state is always current.
+  virtual void complete_state(SolverState&) {}
+  /// The same for u alone at `dofs` (ascending; the same list on every
+  /// rank): what displacement probes read.
+  virtual void complete_displacement_at(SolverState&, std::span<const Index> /*dofs*/) {}
   /// Linear solves Newton made in the last step (0 for explicit).
   virtual int last_iterations() const { return 0; }
   /// The time step the run uses (s); static: 1 / load_steps.

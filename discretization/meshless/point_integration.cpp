@@ -128,18 +128,20 @@ std::pair<Index, Index> group_points(Index first, Index group_size, Index point_
 }  // namespace
 
 PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points) {
-  KERF_CHECK(points.first % schedule.group_size == 0, "internal: points from ", points.first,
-             " split a group of ", schedule.group_size);
-  for (auto& colour : schedule.colours)
-    for (std::vector<Index>& cube : colour)
-      std::erase_if(cube, [&](Index p) { return p < points.first || p >= points.second; });
-  return schedule;
+  const Index size = schedule.group_size;
+  KERF_CHECK(points.first % size == 0, "internal: points from ", points.first, " split a group of ", size);
+  std::vector<char> own_group((points.second + size - 1) / size, 0);  // groups starting before points.second
+  std::fill(own_group.begin() + points.first / size, own_group.end(), 1);
+  return only_groups(std::move(schedule), own_group);
 }
 
 PointSchedule only_groups(PointSchedule schedule, std::span<const char> own_group) {
   for (auto& colour : schedule.colours)
     for (std::vector<Index>& cube : colour)
-      std::erase_if(cube, [&](Index p) { return !own_group[p / schedule.group_size]; });
+      std::erase_if(cube, [&](Index p) {
+        const std::size_t g = static_cast<std::size_t>(p / schedule.group_size);
+        return g >= own_group.size() || !own_group[g];
+      });
   return schedule;
 }
 

@@ -44,7 +44,8 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
 /// rank's own), in the same order: the groups that start in the range (it
 /// must start at a group's start).
 PointSchedule only_points(PointSchedule schedule, std::pair<Index, Index> points);
-/// The schedule of the groups whose `own_group` entry is set (group g: points from g * group_size).
+/// The schedule of the groups whose `own_group` entry is set (group g: points
+/// from g * group_size; groups past its end are not taken).
 PointSchedule only_groups(PointSchedule schedule, std::span<const char> own_group);
 
 /// Adds one point's term into the block of its group: the point's k-th
