@@ -30,7 +30,13 @@ EigenvalueBound largest_eigenvalue(const StiffnessTimes& stiffness_times, const 
   }
   Q.col(0).normalize();
   // A previous Ritz vector with the random one mixed in: a mode it lacks is still reached.
-  if (options.start && options.start->size() == n) Q.col(0) = (*options.start + 0.5 * Q.col(0)).normalized();
+  if (options.start && options.start->size() == n) {
+    // A Ritz vector's sign is rounding's choice: the start takes the one
+    // nearer the fixed vector, so that a run on 2 ranks, whose vector came out
+    // negated, starts where the serial run does (it differed by 2.5e-4).
+    const double sign = options.start->dot(Q.col(0)) < 0.0 ? -1.0 : 1.0;
+    Q.col(0) = (sign * *options.start + 0.5 * Q.col(0)).normalized();
+  }
   EigenvalueBound result;
   for (int j = 0; j < m; ++j) {
     Vector w = apply(Q.col(j));
