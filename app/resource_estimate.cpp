@@ -278,7 +278,7 @@ int written_steps(const Scene& scene) {
 struct MemoryParts {
   double meshing = 0.0;  // gmsh's structures while it meshes (rank 0's alone under mpirun)
   double mesh = 0.0;     // the mesh's arrays
-  double tables = 0.0;   // meshless shape tables and their kin, whole on every rank
+  double tables = 0.0;   // meshless shape tables and their kin (nodal: whole on every rank; EFG: divided)
   double matrix = 0.0;   // the matrix's copies and its factor or preconditioner: the ranks share it
   double whole = 0.0;    // the Enrichment Grids' columns; the state and work vectors: whole on every rank
   double sum() const { return meshing + mesh + tables + matrix + whole; }
@@ -306,7 +306,8 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
 
 /// The largest rank's peak when `ranks` share the run. Rank 0 makes the mesh
 /// (gmsh) before any matrix exists. A divided mesh (body_plan) leaves each
-/// rank its piece; otherwise the mesh and tables are whole on every rank.
+/// rank its piece; otherwise the mesh is whole on every rank, and so are the
+/// tables but EFG's Gauss points'.
 /// Either way the ranks share the matrix, at parallel_matrix_overhead.
 double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
   if (ranks <= 1) return base_mb + m.sum();
@@ -314,8 +315,10 @@ double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
       scene.solve.petsc_written ? parallel_matrix_overhead_as_written : parallel_matrix_overhead_kerf_options;
   if (body_plan(scene).divided_among_ranks())
     return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
+  // EFG: each rank holds its own cells' Gauss points (the nodes' tables, small beside them, are whole).
+  const double tables = scene.discretization.method == Method::efg ? m.tables / ranks : m.tables;
   return base_mb +
-         std::max(m.meshing + m.mesh, m.mesh + m.tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
+         std::max(m.meshing + m.mesh, m.mesh + tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
 }
 
 }  // namespace

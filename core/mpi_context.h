@@ -4,7 +4,7 @@
 // to the body factory and the mesh: which rank this process is of how many,
 // and the few collective calls the layers below the solvers need without
 // knowing PETSc (rank 0's numbers to every rank, each rank its own part of
-// rank 0's numbers, every rank's numbers to all, a graph divided into parts).
+// rank 0's numbers, every rank's numbers to all or added up, a graph divided into parts).
 // solvers/rank_messages.h makes one whose calls go through PETSc. The
 // default is a serial run.
 #include <span>
@@ -24,6 +24,9 @@ using FirstRankSender = std::vector<double> (*)(std::vector<double>);
 using PartSender = std::vector<double> (*)(std::vector<std::vector<double>>);
 /// Every rank's numbers, in rank order, on every rank. A collective call.
 using EveryRankGatherer = std::vector<std::vector<double>> (*)(std::vector<double>);
+/// Every rank's values (the same length on each) added up, in place, on
+/// every rank. A collective call.
+using EveryRankSummer = void (*)(std::span<double>);
 /// The part (0 .. parts - 1) of each vertex of a graph given as sorted
 /// neighbour lists without the vertex itself (CSR: `offsets`, vertices + 1
 /// entries, into `neighbours`), each part about as heavy and the edges
@@ -37,6 +40,7 @@ struct MpiContext {
   PartSender send_parts = nullptr;
   EveryRankGatherer gather = nullptr;
   GraphPartitioner partition = nullptr;
+  EveryRankSummer summer = nullptr;
 
   bool distributed() const { return ranks.distributed(); }
   /// Rank 0's `values` on every rank (a collective call under mpirun).
@@ -53,6 +57,15 @@ struct MpiContext {
   std::vector<std::vector<double>> from_every_rank(std::vector<double> mine) const {
     if (gather) return gather(std::move(mine));
     return {std::move(mine)};
+  }
+  /// Every rank's `values` added up, on every rank (serial: as they are).
+  void sum_on_every_rank(std::span<double> values) const {
+    if (summer) summer(values);
+  }
+  /// Every rank's x added up (serial: x).
+  double sum_on_every_rank(double x) const {
+    sum_on_every_rank(std::span<double>(&x, 1));
+    return x;
   }
 };
 

@@ -92,7 +92,7 @@ void note_how_ranks_hold_the_body(const MpiContext& mpi, const BodyPlan& plan, R
   const std::string& why = plan.whole_on_every_rank;
   if (!mpi.distributed() || why.empty()) return;
   const std::string note =
-      "on " + std::to_string(mpi.ranks.count) + " MPI ranks the body is whole on every rank: " + why;
+      "on " + std::to_string(mpi.ranks.count) + " MPI ranks the body is not divided among them: " + why;
   if (std::find(report.notes.begin(), report.notes.end(), note) == report.notes.end()) report.notes.push_back(note);
 }
 
@@ -114,7 +114,8 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Sc
   MeshlessDomain domain(scene, std::move(cuts), std::move(nodes), scene.box, std::move(background));
   report.add_stage("shape functions");
   if (scene.discretization.method == Method::nodal) return std::make_unique<NodalBody>(scene, std::move(domain), share);
-  return std::make_unique<EfgBody>(scene, std::move(domain), share);
+  // The ranks' context only where the body is shared among them (its sums are collective).
+  return std::make_unique<EfgBody>(scene, std::move(domain), share.distributed() ? mpi : MpiContext{share});
 }
 
 }  // namespace

@@ -14,6 +14,10 @@ bool has_boundary_loads(const Scene& scene) {
 /// Why the body stays whole on every rank under mpirun (empty: its mesh is divided).
 std::string whole_on_every_rank(const Scene& scene) {
   const DiscretizationOptions& d = scene.discretization;
+  if (d.method == Method::efg)
+    return "discretization.method: efg: the node set, the background mesh and the shape functions at the nodes "
+           "and boundary points are whole on every rank (not divided yet); each rank holds and computes only its "
+           "own cells' Gauss points";
   if (d.method != Method::fem)
     return std::string("discretization.method: ") + method_descriptor(d.method).name +
            ": a meshless node set is not divided among the ranks yet; each rank holds it whole and computes its "

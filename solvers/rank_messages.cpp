@@ -2,6 +2,7 @@
 
 #include <petscvec.h>
 
+#include <algorithm>
 #include <numeric>
 
 #include "core/check.h"
@@ -109,10 +110,28 @@ std::vector<std::vector<double>> gather_from_every_rank(std::vector<double> mine
   return out;
 }
 
+void sum_on_every_rank(std::span<double> values) {
+  ensure_petsc_initialized();
+  std::vector<PetscInt> entries;  // a rank's part is zero away from its points: only the rest is sent
+  std::vector<PetscScalar> nonzero;
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (values[k] != 0.0) entries.push_back(static_cast<PetscInt>(k)), nonzero.push_back(values[k]);
+  Vec owned = nullptr, all = nullptr;
+  VecScatter to_all = nullptr;
+  check_petsc(VecCreateMPI(PETSC_COMM_WORLD, PETSC_DECIDE, vector_length(values.size()), &owned), "VecCreateMPI");
+  check_petsc(VecSetValues(owned, static_cast<PetscInt>(entries.size()), entries.data(), nonzero.data(), ADD_VALUES),
+              "VecSetValues");
+  check_petsc(VecAssemblyBegin(owned), "VecAssemblyBegin");
+  check_petsc(VecAssemblyEnd(owned), "VecAssemblyEnd");
+  check_petsc(VecScatterCreateToAll(owned, &to_all, &all), "VecScatterCreateToAll");
+  const std::vector<double> sum = scatter_and_read(to_all, owned, all);
+  std::copy(sum.begin(), sum.end(), values.begin());
+}
+
 MpiContext petsc_mpi_context(RankShare ranks) {
   if (!ranks.distributed()) return MpiContext{ranks};
   return MpiContext{ranks, &send_from_first_rank, &send_parts_from_first_rank, &gather_from_every_rank,
-                    &ptscotch_parts};
+                    &ptscotch_parts, &sum_on_every_rank};
 }
 
 }  // namespace kerf

@@ -1,6 +1,7 @@
 #pragma once
 // The collective calls of core/mpi_context.h, through PETSc vectors and
 // scatters (kerf passes no message of its own), and the context that holds them.
+#include <span>
 #include <vector>
 
 #include "core/mpi_context.h"
@@ -17,6 +18,11 @@ std::vector<double> send_parts_from_first_rank(std::vector<std::vector<double>> 
 
 /// Every rank's `mine` (any length) in rank order, on every rank. Collective.
 std::vector<std::vector<double>> gather_from_every_rank(std::vector<double> mine);
+
+/// Every rank's `values` (the same length on each) added up, on every rank:
+/// each rank adds its nonzero entries into a PETSc vector (ADD_VALUES), which
+/// is then gathered to all. Collective.
+void sum_on_every_rank(std::span<double> values);
 
 /// The run's context among `ranks`: its collective calls through PETSc and
 /// its graphs partitioned by PT-Scotch (solvers/graph_partition.h); a

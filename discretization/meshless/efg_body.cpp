@@ -1,6 +1,7 @@
 #include "discretization/meshless/efg_body.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -40,8 +41,59 @@ CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
   return out;
 }
 
-PointIntegration make_points(const MeshlessDomain& domain, int order) {
+/// Which cells' points a rank integrates: the cell goes to the rank owning
+/// most of its points' support nodes (ties: the lowest), so that its blocks
+/// fall mostly in that rank's own rows (the ranks' rows are even ranges of the
+/// nodes). An even share of the cells in their own order sent half the blocks
+/// of a bar to the other rank (the lattice's node order and the cells' order
+/// run along different axes): 6.7 million stashed entries a rank, +335 MB, on
+/// the scaling study's EFG cantilever. Into `others_reaching_own`: the
+/// neighbour lists of the other ranks' points that reach this rank's nodes.
+std::vector<char> cells_of_rank(const MeshlessDomain& domain, const CellQuadrature& q, RankShare share,
+                                NeighborLists& others_reaching_own) {
+  const Index per_cell = q.per_cell, cells = static_cast<Index>(q.position.size()) / per_cell;
+  if (!share.distributed()) return std::vector<char>(cells, 1);
+  const Index N = domain.nodes().size();
+  const auto [own_begin, own_end] = even_part(N, share.rank, share.count);
+  constexpr Index chunk = 4096;  // cells whose points' neighbour lists are held at once
+  std::vector<char> mine(cells, 0);
+  std::vector<Index> votes(share.count);
+  for (Index first = 0; first < cells; first += chunk) {
+    const Index last = std::min(cells, first + chunk);
+    const NeighborLists near = domain.supports_covering(
+        std::span<const Vec3>(q.position).subspan(first * per_cell, (last - first) * per_cell));
+    for (Index c = first; c < last; ++c) {
+      std::fill(votes.begin(), votes.end(), 0);
+      bool reaches_own = false;
+      const Index begin = (c - first) * per_cell, end = begin + per_cell;
+      for (Index p = begin; p < end; ++p)
+        for (Index J : near.of(p)) {
+          ++votes[even_part_owner(N, J, share.count)];
+          reaches_own = reaches_own || (J >= own_begin && J < own_end);
+        }
+      mine[c] = std::max_element(votes.begin(), votes.end()) - votes.begin() == share.rank;
+      if (mine[c] || !reaches_own) continue;
+      for (Index p = begin; p < end; ++p) {
+        auto list = near.of(p);
+        others_reaching_own.index.insert(others_reaching_own.index.end(), list.begin(), list.end());
+        others_reaching_own.start.push_back(static_cast<Index>(others_reaching_own.index.size()));
+      }
+    }
+  }
+  return mine;
+}
+
+/// This rank's cells' Gauss points (cells_of_rank) and their shape functions.
+PointIntegration rank_points(const MeshlessDomain& domain, int order, RankShare share,
+                             NeighborLists& others_reaching_own) {
   CellQuadrature q = cell_quadrature(domain.background(), order);
+  const std::vector<char> mine = cells_of_rank(domain, q, share, others_reaching_own);
+  if (share.distributed()) {
+    Index kept = 0;
+    for (std::size_t p = 0; p < q.position.size(); ++p)
+      if (mine[p / q.per_cell]) q.position[kept] = q.position[p], q.weight[kept++] = q.weight[p];
+    q.position.resize(kept), q.weight.resize(kept);
+  }
   ShapeTable shapes = domain.shapes_at(q.position, "the quadrature point");
   return PointIntegration(std::move(shapes), std::move(q.position), std::move(q.weight), domain.nodes().positions,
                           q.per_cell);
@@ -49,13 +101,22 @@ PointIntegration make_points(const MeshlessDomain& domain, int order) {
 
 }  // namespace
 
-EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share)
-    : MeshlessBody(scene, std::move(domain)), points_(make_points(domain_, scene.discretization.meshless.quadrature_order)) {
+EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, const MpiContext& mpi)
+    : MeshlessBody(scene, std::move(domain)),
+      mpi_(mpi),
+      points_(rank_points(domain_, scene.discretization.meshless.quadrature_order, mpi.ranks, others_reaching_own_)) {
+  total_points_ = static_cast<Index>(mpi_.sum_on_every_rank(static_cast<double>(points_.point_count())));
+  reduced_basis_points_ =
+      static_cast<Index>(mpi_.sum_on_every_rank(static_cast<double>(points_.shapes().reduced_basis_points())));
   stress_.assign(points_.point_count(), Mat3::Zero());
   assemble_loads();
   build_constraints(scene);
-  share_points(share);
+  share_nodes();
   record_constraint_residual();
+}
+
+WeakBoundaryConditions::VolumePoints EfgBody::volume_points() const {
+  return {points_.shapes(), points_.weights(), points_.positions(), mpi_.distributed() ? &mpi_ : nullptr};
 }
 
 void EfgBody::build_constraints(const Scene& scene) {
@@ -64,92 +125,69 @@ void EfgBody::build_constraints(const Scene& scene) {
     dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
     return;
   }
-  constraints_ = std::make_unique<WeakBoundaryConditions>(
-      scene, domain_, law_, essential == EssentialMethod::nitsche, scene.discretization.meshless.quadrature_order,
-      WeakBoundaryConditions::VolumePoints{points_.shapes(), points_.weights(), points_.positions()});
+  constraints_ = std::make_unique<WeakBoundaryConditions>(scene, domain_, law_, essential == EssentialMethod::nitsche,
+                                                          scene.discretization.meshless.quadrature_order,
+                                                          volume_points());
   dirichlet_ = domain_.nodal_constraints(
       scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });
 }
 
 void EfgBody::record_constraint_residual() {
-  const VolumeTerms volume = volume_terms(points_.shapes(), points_.weights(), node_count());
+  VolumeTerms volume = volume_terms(points_.shapes(), points_.weights(), node_count());
+  for (std::vector<double>* sum : {&volume.gradient_sum, &volume.magnitude, &volume.value_sum})
+    mpi_.sum_on_every_rank(*sum);
   record_constraint(constraint_residual(domain_.boundary_terms(), volume, domain_.dimension()), std::nullopt);
 }
 
 void EfgBody::assemble_loads() {
   const int dim = domain_.dimension();
   load_ = Vector::Zero(dof_count());
-  const ShapeTable& t = points_.shapes();
-  for (Index p = 0; p < points_.point_count(); ++p) {
-    auto near = t.neighbours.of(p);
-    const double* phi = t.values_of(p);
-    for (std::size_t k = 0; k < near.size(); ++k)
-      for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * gravity_[i];
+  if (gravity_.squaredNorm() > 0.0) {
+    const ShapeTable& t = points_.shapes();
+    for (Index p = 0; p < points_.point_count(); ++p) {
+      auto near = t.neighbours.of(p);
+      const double* phi = t.values_of(p);
+      for (std::size_t k = 0; k < near.size(); ++k)
+        for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * gravity_[i];
+    }
+    mpi_.sum_on_every_rank(std::span<double>(load_.data(), load_.size()));
   }
-  domain_.add_boundary_loads(boundary_, load_);
+  domain_.add_boundary_loads(boundary_, load_);  // every boundary point, on every rank
 }
 
 CutUpdate EfgBody::update_for_cuts(double t) {
-  // Every rank brings every table up to t (the same on each): the neighbour
-  // lists, hence the schedule and each rank's points and touched rows, stay.
+  // Every rank brings its own points' rows up to t; the neighbour lists, hence
+  // the schedule and each rank's points and touched rows, stay. The nodes'
+  // table (output, probes) and the boundary points' are whole on every rank.
   CutUpdate update;
-  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t);  // the nodes' own (output, probes)
+  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t);  // the same on every rank
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
   const std::vector<Index> rows = points_.points_holding(changed);
-  update.points = static_cast<Index>(
-      domain_.refresh_rows(points_.shapes_in_place(), points_.positions(), rows, "the quadrature point").size());
+  std::array<double, 2> counts{
+      static_cast<double>(
+          domain_.refresh_rows(points_.shapes_in_place(), points_.positions(), rows, "the quadrature point").size()),
+      static_cast<double>(points_.shapes().reduced_basis_points())};
+  mpi_.sum_on_every_rank(counts);
+  update.points = static_cast<Index>(counts[0]);
+  reduced_basis_points_ = static_cast<Index>(counts[1]);
   std::vector<char> moved(node_count(), 0);
   for (Index I : changed) moved[I] = 1;
-  if (constraints_)
-    constraints_->update_for_cuts(
-        domain_, moved, WeakBoundaryConditions::VolumePoints{points_.shapes(), points_.weights(), points_.positions()});
+  if (constraints_) constraints_->update_for_cuts(domain_, moved, volume_points());
   const bool gravity = gravity_.squaredNorm() > 0.0;
   if ((gravity && update.points > 0) || domain_.boundary_loads_touch(changed)) assemble_loads();
   return update;
 }
 
 void EfgBody::begin_time_step(const Vector& u) {
-  if (constraints_)
-    constraints_->refresh_alpha(
-        u, WeakBoundaryConditions::VolumePoints{points_.shapes(), points_.weights(), points_.positions()});
+  if (constraints_) constraints_->refresh_alpha(u, volume_points());
 }
 
-std::vector<char> EfgBody::cells_of_this_rank() const {
-  const Index per_cell = points_.schedule().group_size, cells = points_.point_count() / per_cell;
-  if (!share_.distributed()) return std::vector<char>(cells, 1);
-  // The ranks' rows are even ranges of the nodes; a cell goes to the rank
-  // owning most of its points' support nodes (ties: the lowest), so that its
-  // blocks fall mostly in that rank's own rows. An even share of the cells
-  // in their own order sent half the blocks of a bar to the other rank (the
-  // lattice's node order and the cells' order run along different axes):
-  // 6.7 million stashed entries a rank, +335 MB, on the scaling study's EFG cantilever.
-  std::vector<char> mine(cells, 0);
-  std::vector<Index> votes(share_.count);
-  for (Index c = 0; c < cells; ++c) {
-    std::fill(votes.begin(), votes.end(), 0);
-    for (Index p = c * per_cell; p < (c + 1) * per_cell; ++p)
-      for (Index J : points_.shapes().neighbours.of(p))
-        ++votes[even_part_owner(node_count(), J, share_.count)];
-    mine[c] = std::max_element(votes.begin(), votes.end()) - votes.begin() == share_.rank;
-  }
-  return mine;
-}
-
-void EfgBody::share_points(RankShare share) {
-  share_ = share;
-  const Index per_cell = points_.schedule().group_size;
-  KERF_CHECK(points_.point_count() % per_cell == 0, "internal: ", points_.point_count(), " points in cells of ",
-             per_cell);
+void EfgBody::share_nodes() {
+  const RankShare share = mpi_.ranks;
   own_nodes_ = even_part(node_count(), share.rank, share.count);
-  const std::vector<char> own_cells = cells_of_this_rank();
-  own_points_.clear();
-  for (Index p = 0; p < points_.point_count(); ++p)
-    if (own_cells[p / per_cell]) own_points_.push_back(p);
-  own_schedule_ = only_groups(points_.schedule(), own_cells);
   std::vector<char> reached(node_count(), 0);
-  for (Index p : own_points_)
-    for (Index J : points_.shapes().neighbours.of(p)) reached[J] = 1;
+  for (Index J : points_.shapes().neighbours.index) reached[J] = 1;
   if (constraints_) {
     constraints_->share(share);
     constraints_->mark_reached(reached);
@@ -159,13 +197,10 @@ void EfgBody::share_points(RankShare share) {
 
 void EfgBody::internal_force(const Vector& u, Vector& f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  // Other ranks' points keep a zero stress (set when the body was made): the gather adds this rank's part.
-  const Index own = static_cast<Index>(own_points_.size());
+  const Index count = points_.point_count();
 #pragma omp parallel for schedule(static)
-  for (Index k = 0; k < own; ++k) {
-    const Index p = own_points_[k];
+  for (Index p = 0; p < count; ++p)
     stress_[p] = points_.weight(p) * law_.stress(deformation_gradient(points_.shapes(), p, u));
-  }
   points_.gather(stress_, f);
   if (constraints_) constraints_->terms(u, &f);
 }
@@ -173,16 +208,16 @@ void EfgBody::internal_force(const Vector& u, Vector& f) const {
 double EfgBody::strain_energy(const Vector& u) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
   double energy = 0.0;
-  const Index own = static_cast<Index>(own_points_.size());
+  const Index count = points_.point_count();
 #pragma omp parallel for schedule(static) reduction(+ : energy)
-  for (Index k = 0; k < own; ++k)
-    energy += points_.weight(own_points_[k]) * law_.energy(deformation_gradient(points_.shapes(), own_points_[k], u));
+  for (Index p = 0; p < count; ++p)
+    energy += points_.weight(p) * law_.energy(deformation_gradient(points_.shapes(), p, u));
   return energy + (constraints_ ? constraints_->terms(u, nullptr) : 0.0);
 }
 
 void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
-  assemble_material_blocks(points_.shapes(), own_schedule_, points_.weights(), law_, u, sink);
+  assemble_material_blocks(points_.shapes(), points_.schedule(), points_.weights(), law_, u, sink);
   if (constraints_) constraints_->add_tangent(u, sink);
   if (f) internal_force(u, *f);
 }
@@ -191,6 +226,13 @@ void EfgBody::visit_couplings(const CouplingVisitor& visit) const {
   std::vector<Index> dofs;
   for (Index p = 0; p < points_.point_count(); ++p) {
     neighbour_dofs(points_.shapes(), p, dofs);
+    visit(dofs);
+  }
+  const int dim = domain_.dimension();
+  for (Index p = 0; p < others_reaching_own_.size(); ++p) {
+    dofs.clear();
+    for (Index J : others_reaching_own_.of(p))
+      for (int i = 0; i < dim; ++i) dofs.push_back(dim * J + i);
     visit(dofs);
   }
   // Boundary points couple nodes whose supports reach the boundary: all of
@@ -203,7 +245,7 @@ Vector EfgBody::lumped_mass() const {
   const int dim = domain_.dimension();
   Vector m = Vector::Zero(dof_count());
   const ShapeTable& t = points_.shapes();
-  for (Index p : own_points_) {
+  for (Index p = 0; p < points_.point_count(); ++p) {
     auto near = t.neighbours.of(p);
     const double* phi = t.values_of(p);
     for (std::size_t k = 0; k < near.size(); ++k)
@@ -213,7 +255,7 @@ Vector EfgBody::lumped_mass() const {
 }
 
 void EfgBody::consistent_mass(const BlockSink& sink) const {
-  assemble_mass_blocks(points_.shapes(), own_schedule_, points_.weights(), density_, sink);
+  assemble_mass_blocks(points_.shapes(), points_.schedule(), points_.weights(), density_, sink);
 }
 
 Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {
@@ -223,7 +265,7 @@ Vec3 EfgBody::weak_reaction(const Vector& u, const Selection& selection) const {
 void EfgBody::add_figures(std::map<std::string, double>& extras) const {
   MeshlessBody::add_figures(extras);
   if (domain_.enrichment())
-    extras["mls_reduced_basis_points"] = static_cast<double>(points_.shapes().reduced_basis_points());
+    extras["mls_reduced_basis_points"] = static_cast<double>(reduced_basis_points_);
 }
 
 }  // namespace kerf

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/rank_share.h"
+#include "core/mpi_context.h"
 #include "discretization/meshless/meshless_body.h"
 #include "discretization/meshless/point_integration.h"
 #include "discretization/meshless/weak_boundary_conditions.h"
@@ -22,20 +22,24 @@ class EfgBody final : public MeshlessBody,
                       public CutsInShapeFunctions,
                       public PartitionedAssembly {
  public:
-  /// With `share` across ranks the body computes this rank's part alone
-  /// (PartitionedAssembly): the Gauss points of an even split of the
-  /// locality-ordered background cells and of each constraint's boundary
-  /// points; it owns the rows of an even split of the nodes.
-  EfgBody(const Scene& scene, MeshlessDomain domain, RankShare share = {});
+  /// Among MPI ranks (`mpi`) the body computes this rank's part alone
+  /// (PartitionedAssembly): it owns the rows of an even split of the nodes and
+  /// holds the shape functions of its own cells' Gauss points only (a cell is
+  /// the rank's that owns most of its points' support nodes), and of each
+  /// constraint's boundary points its share. Collective under MPI.
+  EfgBody(const Scene& scene, MeshlessDomain domain, const MpiContext& mpi = {});
 
-  bool partitioned() const override { return share_.distributed(); }
+  bool partitioned() const override { return mpi_.distributed(); }
   std::pair<Index, Index> owned_nodes() const override { return own_nodes_; }
   const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
 
-  Index element_count() const override { return points_.point_count(); }
-  /// The Gauss points of the cells, cell by cell.
+  /// Every rank's Gauss points.
+  Index element_count() const override { return total_points_; }
+  /// This rank's Gauss points (every point in a serial run), cell by cell.
   const PointIntegration& points() const { return points_; }
 
+  /// This rank's points' couplings, and those of the other ranks' points that
+  /// reach its own nodes: its rows' whole pattern.
   void visit_couplings(const CouplingVisitor& visit) const override;
   /// Not reentrant: two calls on one body must not run at the same time (per-point scratch).
   void internal_force(const Vector& u, Vector& f) const override;
@@ -48,35 +52,37 @@ class EfgBody final : public MeshlessBody,
   Vec3 weak_reaction(const Vector& u, const Selection& selection) const override;
   const WeakBoundaryConditions* weak_conditions() const override { return constraints_.get(); }
 
-  /// The rows a growing cut's new pieces touch: the Gauss points', the weak
-  /// constraints' boundary points' and, where they changed, the loads.
+  /// The rows a growing cut's new pieces touch: each rank's Gauss points', the
+  /// weak constraints' boundary points' and, where they changed, the loads
+  /// (summed over the ranks). Collective under MPI.
   CutUpdate update_for_cuts(double t) override;
-  /// Nitsche's alpha from the tangents at u (WeakBoundaryConditions::refresh_alpha).
+  /// Nitsche's alpha from the tangents at u (WeakBoundaryConditions::refresh_alpha). Collective under MPI.
   void begin_time_step(const Vector& u) override;
 
-  /// The meshless figures, and the Gauss points a cut left a reduced basis.
+  /// The meshless figures, and the Gauss points a cut left a reduced basis (every rank's).
   void add_figures(std::map<std::string, double>& extras) const override;
 
  private:
-  /// Gravity through the Gauss points' shape functions, and the boundary loads, into load_.
+  /// Gravity through the Gauss points' shape functions (every rank's, summed), and the boundary loads, into load_.
   void assemble_loads();
   void build_constraints(const Scene& scene);
-  void share_points(RankShare share);
-  /// The integration constraint's residual now (Gauss points: no correction).
+  void share_nodes();
+  /// The integration constraint's residual now (Gauss points: no correction), over every rank's points.
   void record_constraint_residual();
+  /// This rank's points as the weak constraints see them (with the ranks, to add up their sums).
+  WeakBoundaryConditions::VolumePoints volume_points() const;
 
-  PointIntegration points_;
-  RankShare share_;
-  /// The background cells whose points this rank integrates: those most of
-  /// whose points' support nodes are its own (set per cell: every cell in a serial run).
-  std::vector<char> cells_of_this_rank() const;
-
-  std::vector<Index> own_points_;                   // ascending: every point in a serial run
+  MpiContext mpi_;
+  // Declared before points_, which fills it as it is made: the neighbour
+  // lists of the other ranks' Gauss points that reach this rank's own nodes.
+  NeighborLists others_reaching_own_;
+  PointIntegration points_;                         // this rank's cells' Gauss points
+  Index total_points_ = 0;                          // every rank's
+  Index reduced_basis_points_ = 0;                  // every rank's points a cut left a reduced basis
   std::pair<Index, Index> own_nodes_;               // its rows: every node in a serial run
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
-  PointSchedule own_schedule_;                      // its points' part of points_.schedule()
   std::unique_ptr<WeakBoundaryConditions> constraints_;  // null with essential: parameters
-  mutable std::vector<Mat3> stress_;
+  mutable std::vector<Mat3> stress_;                // per point of points_
 };
 
 }  // namespace kerf

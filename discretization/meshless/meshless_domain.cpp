@@ -178,6 +178,10 @@ ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::st
   return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment(), growing_);
 }
 
+NeighborLists MeshlessDomain::supports_covering(std::span<const Vec3> points) const {
+  return covering_supports(*index_, points);
+}
+
 std::vector<Index> MeshlessDomain::refresh_rows(ShapeTable& table, std::span<const Vec3> points,
                                                 std::span<const Index> rows, const std::string& what) const {
   if (!enrichment_ || rows.empty()) return {};

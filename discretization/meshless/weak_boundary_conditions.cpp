@@ -56,7 +56,8 @@ void WeakBoundaryConditions::set_nitsche_alpha(const VolumePoints& volume) {
   const int dim = domain_.dimension();
   const Lame& lame = law_.lame();
   const Index N = domain_.nodes().size();
-  const std::vector<double> diagonal = material_diagonal(volume.table, volume.weight, lame, N);
+  std::vector<double> diagonal = material_diagonal(volume.table, volume.weight, lame, N);
+  if (volume.ranks) volume.ranks->sum_on_every_rank(diagonal);
   // Per dof (k, i): sum over every constrained point of w_b |Pi sigma(e_i (x) g_k) n|^2.
   std::vector<double> pull(dim * N, 0.0);
   for (const Constraint& c : constraints_)
@@ -82,7 +83,8 @@ void WeakBoundaryConditions::refresh_alpha(const Vector& u, const VolumePoints& 
   }
   const int dim = domain_.dimension();
   const Index N = domain_.nodes().size();
-  const std::vector<double> diagonal = material_diagonal(volume.table, volume.weight, law_, u, N);
+  std::vector<double> diagonal = material_diagonal(volume.table, volume.weight, law_, u, N);
+  if (volume.ranks) volume.ranks->sum_on_every_rank(diagonal);
   // As at rest, with the traction of e_i (x) g_k through the tangent at the point:
   // t_j = sum_lm dP_jl/dF_im g_m n_l.
   std::vector<double> pull(dim * N, 0.0);

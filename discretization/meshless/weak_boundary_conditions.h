@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/mpi_context.h"
 #include "core/rank_share.h"
 #include "discretization/discrete_body.h"
 #include "discretization/meshless/meshless_domain.h"
@@ -49,11 +50,14 @@ class WeakBoundaryConditions {
   static constexpr double penalty_factor = 1.0e4;
 
   /// The body's integration points, for Nitsche's estimate: shape functions,
-  /// weights (m^3; 2D: m^2) and positions (m).
+  /// weights (m^3; 2D: m^2) and positions (m). Under MPI (`ranks`) each rank
+  /// holds its share of the points, and the estimate's sums over them are
+  /// added up across the ranks (collective).
   struct VolumePoints {
     const ShapeTable& table;
     std::span<const double> weight;
     std::span<const Vec3> position;
+    const MpiContext* ranks = nullptr;
   };
 
   /// The scene's fix/displacement conditions on planes and boxes (`point`
