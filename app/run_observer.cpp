@@ -42,8 +42,7 @@ void RunObserver::after_step(const RunParts& run, SolverState& state) {
   load_before_.swap(load_after_);
 }
 
-void RunObserver::write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report) {
-  ScopedTimer timer(report.phases, Phase::output);
+void RunObserver::evaluate(const RunParts& run, SolverState& state) {
   const ProbeSet& probes = *run.probes;
   if (const auto& read = probes.displacement_dofs_read(); read && !vtk_)
     run.stepper->complete_displacement_at(state, *read);
@@ -54,7 +53,12 @@ void RunObserver::write(const RunParts& run, SolverState& state, std::size_t gro
     energy_.kinetic = run.stepper->kinetic_energy(state);
     energy_.strain = run.mechanics->strain_energy(state.u);
   }
-  std::vector<double> row = probes.values(state, reaction_, energy_);
+}
+
+void RunObserver::write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report) {
+  ScopedTimer timer(report.phases, Phase::output);
+  evaluate(run, state);
+  std::vector<double> row = run.probes->values(state, reaction_, energy_);
   row.insert(row.begin(), state.t);
   if (table_) table_->append(row);
   if (vtk_) {
@@ -78,6 +82,11 @@ void RunObserver::write(const RunParts& run, SolverState& state, std::size_t gro
 
 nlohmann::ordered_json RunObserver::final_probes(const RunParts& run, const SolverState& state) const {
   return run.probes->final_values(state, reaction_, energy_);
+}
+
+nlohmann::ordered_json RunObserver::probes_now(const RunParts& run, SolverState& state) {
+  evaluate(run, state);
+  return final_probes(run, state);
 }
 
 }  // namespace kerf

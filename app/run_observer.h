@@ -38,8 +38,13 @@ class RunObserver {
   void write(const RunParts& run, SolverState& state, std::size_t growths, RunReport& report);
   /// The probes' values at the last write, as summary.json holds them.
   nlohmann::ordered_json final_probes(const RunParts& run, const SolverState& state) const;
+  /// The same at the state as it is now, written or not. Collective, as write().
+  nlohmann::ordered_json probes_now(const RunParts& run, SolverState& state);
 
  private:
+  /// The state completed where the probes (and the series) read it, the reaction and energies now.
+  void evaluate(const RunParts& run, SolverState& state);
+
   SharedCuts cuts_;
   bool writes_files_;
   std::unique_ptr<VtkSeries> vtk_;

@@ -13,6 +13,7 @@ set(kerf_public_headers
   problem/scene_reader.h
   problem/scene_json.h
   app/run_scene.h
+  app/session.h
   app/run_record.h
   app/summary_json.h)
 

@@ -78,7 +78,7 @@ struct CutCounters {
 
 struct RunReport {
   double setup_seconds = 0.0;  // wall time before the first step: body, stepper, initial state
-  double solve_seconds = 0.0;  // wall time of the step loop
+  double solve_seconds = 0.0;  // wall time of the steps (each with its cut update and output)
   PhaseTimes phases;
   std::vector<std::string> stages;   // mesh, mass, stiffness, factorization, petsc, vtk, ...
   RunCounts counts;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/run_scene.h"
+#include "app/session.h"
 #include "app/summary_json.h"
 #include "core/check.h"
 #include "core/interrupt.h"
@@ -101,6 +102,67 @@ Result run(const py::object& source, const std::vector<std::string>& overrides, 
   return Result{outcome.directory, to_python(outcome.summary), outcome.final_body,
                 record_of_summary(outcome.summary, outcome.directory)};
 }
+
+/// kerf.Session: a run stepped from Python (app/session.h). Its state arrays
+/// view the session's own memory (no copy): read again after a step, or
+/// keep a view, which the next steps update in place while the body keeps
+/// its nodes (a cut that remeshes or splits cells changes them).
+class PythonSession {
+ public:
+  PythonSession(const py::object& source, const std::vector<std::string>& overrides, const std::string& out,
+                bool quiet, bool force) {
+    const Scene scene = load_scene(source, overrides);
+    RunOptions options;
+    options.out_dir = out;
+    options.quiet = quiet;
+    options.force = force;
+    options.keep_final_body = true;
+    py::gil_scoped_release free_python;
+    session_ = std::make_unique<Session>(scene, options);
+  }
+  void step(int count) {
+    KERF_CHECK(count >= 1, "Session.step(count): count is ", count, "; expected 1 or more");
+    py::gil_scoped_release free_python;
+    for (int i = 0; i < count; ++i) session_->step();
+  }
+  void run_to_end() {
+    py::gil_scoped_release free_python;
+    while (!session_->done()) session_->step();
+  }
+  Result finish() {
+    RunOutcome outcome;
+    {
+      py::gil_scoped_release free_python;
+      outcome = session_->finish();
+    }
+    return Result{outcome.directory, to_python(outcome.summary), outcome.final_body,
+                  record_of_summary(outcome.summary, outcome.directory)};
+  }
+  /// Leaving a `with` block finishes the session (results readable even after an exception in the block).
+  void close() {
+    if (finished_ || session_->failed()) return;  // a failed one's summary says why already
+    finished_ = true;
+    finish();
+  }
+  Session& session() { return *session_; }
+  /// A property's getter: the session's vector `state` as nodes x dofs_per_node, read-only, keeping the
+  /// session alive as long as the array lives.
+  static auto state_property(const Vector& (Session::*state)()) {
+    return [state](const py::object& self) {
+      Session& session = self.cast<PythonSession&>().session();
+      const Vector& values = (session.*state)();
+      const auto per_node = static_cast<std::size_t>(session.dofs_per_node());
+      py::array_t<double> array({static_cast<std::size_t>(values.size()) / per_node, per_node},
+                                {per_node * sizeof(double), sizeof(double)}, values.data(), self);
+      array.attr("setflags")(py::arg("write") = false);
+      return py::array(array);
+    };
+  }
+  bool finished_ = false;
+
+ private:
+  std::unique_ptr<Session> session_;
+};
 
 /// A run's record as Python values: what read_outcome gives C++.
 py::dict record_counts(const RunRecord& r) {
@@ -197,6 +259,38 @@ PYBIND11_MODULE(_kerf, m) {
                                return fields["displacement"];
                              },
                              "the displacement of each output point at the end (n x 3, m)");
+  py::class_<PythonSession>(m, "Session",
+                            "A run stepped from Python: kerf.Session(scene), then step() and read the state "
+                            "between steps; finish() (or leaving a `with` block) writes the summary")
+      .def(py::init<const py::object&, const std::vector<std::string>&, const std::string&, bool, bool>(),
+           py::arg("source"), py::arg("overrides") = std::vector<std::string>{}, py::arg("out") = "",
+           py::arg("quiet") = true, py::arg("force") = false,
+           "Opens a run of a scene (a kerf.Scene, a dict or a file's path, with overrides 'KEY=VALUE'): "
+           "builds the body and writes step 0's output")
+      .def("step", &PythonSession::step, py::arg("count") = 1,
+           "Takes `count` steps of the scene's integrator (each with its cut growth and output)")
+      .def("run", &PythonSession::run_to_end, "Takes every step left")
+      .def("finish", [](PythonSession& s) { s.finished_ = true; return s.finish(); },
+           "Ends the run where it stands: summary.json with status 'ok'; returns the kerf.Result")
+      .def_property_readonly("done", [](PythonSession& s) { return s.session().done(); })
+      .def_property_readonly("steps_taken", [](PythonSession& s) { return s.session().steps_taken(); })
+      .def_property_readonly("step_count", [](PythonSession& s) { return s.session().step_count(); })
+      .def_property_readonly("time", [](PythonSession& s) { return s.session().time(); },
+                             "the state's time (s; static: the load factor)")
+      .def_property_readonly("dt", [](PythonSession& s) { return s.session().time_step(); })
+      .def_property_readonly("displacement", PythonSession::state_property(&Session::displacement),
+                             "each node's displacement (nodes x dofs per node, m): a read-only view of the "
+                             "session's memory")
+      .def_property_readonly("velocity", PythonSession::state_property(&Session::velocity),
+                             "each node's velocity (nodes x dofs per node, m/s): a read-only view of the "
+                             "session's memory")
+      .def_property_readonly("probes", [](PythonSession& s) { return to_python(s.session().probes()); },
+                             "the scene's probes now, as summary.json's 'probes'")
+      .def("__enter__", [](py::object self) { return self; })
+      .def("__exit__", [](PythonSession& s, const py::object&, const py::object&, const py::object&) {
+        s.close();
+        return false;
+      });
   py::class_<RunRecord>(m, "Record",
                         "A run's summary.json read back typed (kerf.read_outcome), as the studies read it")
       .def_readonly("directory", &RunRecord::directory)

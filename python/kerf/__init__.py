@@ -6,6 +6,14 @@ arrays; run the studies. Errors are kerf.Error, carrying kerf's message
     import kerf
     result = kerf.run("scenes/cantilever.yaml", ["discretization.fem.element=tet4"], out="/tmp/c")
     result.probes["tip"]["displacement"], result.displacement.shape
+
+A session steps a run from Python, the state read between steps (numpy
+views of kerf's memory):
+
+    with kerf.Session("scenes/organ_cut.yaml", out="/tmp/o") as s:
+        while not s.done:
+            s.step()
+            top = s.displacement[:, 2].max()
 """
 import os
 
@@ -20,8 +28,8 @@ os.environ.setdefault("OMP_THREAD_LIMIT", str(len(os.sched_getaffinity(0)) or 1)
 if "GOMP_SPINCOUNT" not in os.environ:
     os.environ.setdefault("OMP_WAIT_POLICY", "passive")
 
-from ._kerf import (Error, Record, Result, Scene, __version__, load_scene, read_outcome, run, studies,  # noqa: E402
-                    study)
+from ._kerf import (Error, Record, Result, Scene, Session, __version__, load_scene, read_outcome, run,  # noqa: E402
+                    studies, study)
 
-__all__ = ["Error", "Record", "Result", "Scene", "__version__", "load_scene", "read_outcome", "run", "studies",
-           "study"]
+__all__ = ["Error", "Record", "Result", "Scene", "Session", "__version__", "load_scene", "read_outcome", "run",
+           "studies", "study"]

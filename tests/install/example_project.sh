@@ -41,3 +41,20 @@ grep -q "kerf_DIR:PATH=$work/prefix/" "$work/example/CMakeCache.txt" ||
 cmake --build "$work/example" -j 2 >"$work/build.log" 2>&1 || { tail -40 "$work/build.log"; exit 1; }
 cd "$work/example" && ctest --output-on-failure -V 2>&1 | grep -E "tip z|tests passed|Failed|\*\*\*|Error|error" 
 ctest --output-on-failure >/dev/null
+# examples/session_loop: a program stepping a kerf session from its own loop, built from the prefix alone,
+# gives `kerf run`'s probes to the last digit on the installed organ_cut scene (a cut growing as it sags).
+cmake -S "$source_dir/examples/session_loop" -B "$work/session_loop" -DCMAKE_PREFIX_PATH="$work/prefix" \
+  -DCMAKE_BUILD_TYPE=Release -DCMAKE_FIND_PACKAGE_NO_PACKAGE_REGISTRY=ON >"$work/session_configure.log" ||
+  { cat "$work/session_configure.log"; exit 1; }
+cmake --build "$work/session_loop" -j 2 >"$work/session_build.log" 2>&1 || { tail -40 "$work/session_build.log"; exit 1; }
+organ="$work/prefix/share/kerf/scenes/organ_cut.yaml"
+"$work/session_loop/kerf_session_loop" "$organ" "$work/session_out" solve.duration=0.08 | tail -2
+"$work/prefix/bin/kerf" run "$organ" --quiet --out "$work/batch_out" --set solve.duration=0.08
+python3 - "$work/session_out/summary.json" "$work/batch_out/summary.json" <<'CHECK'
+import json, sys
+session, batch = (json.load(open(path)) for path in sys.argv[1:])
+assert session["status"] == "ok", session["status"]
+if session["probes"] != batch["probes"]:
+    sys.exit(f"the session loop's probes {session['probes']} differ from kerf run's {batch['probes']}")
+print("session loop: kerf run's probes to the last digit")
+CHECK

@@ -104,3 +104,39 @@ def test_studies_are_listed_and_run(tmp_path):
     assert os.path.exists(tmp_path / "solvers.csv")
     with pytest.raises(kerf.Error, match="no_such_study"):
         kerf.study("no_such_study")
+
+
+CUTTING = os.path.join(SOURCE, "scenes", "cutting_2d.yaml")
+SHORT_CUT = ["solve.duration=6e-4"]
+
+
+def test_a_session_stepped_from_python_gives_the_command_lines_answer_to_the_last_digit(tmp_path):
+    expected = kerf.run(CUTTING, SHORT_CUT, out=str(tmp_path / "batch")).summary
+    with kerf.Session(CUTTING, SHORT_CUT, out=str(tmp_path / "session")) as session:
+        u = session.displacement  # a view: the steps update it in place (the nodes stay: a meshless cut)
+        assert not u.flags.writeable and not u.flags.owndata
+        assert u.shape == (expected["counts"]["nodes"], 2)
+        tops = []
+        while not session.done:
+            session.step()
+            tops.append(u[:, 1].max())
+            assert numpy.array_equal(u, session.displacement)
+        assert session.steps_taken == session.step_count and session.time == pytest.approx(6e-4)
+        assert len(set(tops)) > 1  # the view moved with the state
+        probes = session.probes
+    assert probes == expected["probes"]
+    with open(tmp_path / "session" / "summary.json") as f:
+        written = json.load(f)
+    assert written["status"] == "ok" and written["probes"] == expected["probes"]
+
+
+def test_a_session_refuses_a_step_past_its_end_and_a_bad_count(tmp_path):
+    session = kerf.Session(os.path.join(SOURCE, "scenes", "plate_tension_2d.yaml"), ["solve.load_steps=1"],
+                           out=str(tmp_path))
+    with pytest.raises(kerf.Error, match="count is 0"):
+        session.step(0)
+    session.run()
+    with pytest.raises(kerf.Error, match="solve.load_steps"):
+        session.step()
+    result = session.finish()
+    assert result.summary["status"] == "ok" and result.displacement.shape[0] > 0

@@ -1,0 +1,63 @@
+#pragma once
+// A run of a scene stepped by its caller, one time step at a time (a load
+// increment in a static run): `kerf run` steps it to the end (run_scene), a
+// simulator steps it from its own loop and reads the state between steps,
+// as SOFA's animate or a haptic loop does. It writes what `kerf run` writes,
+// as it goes: summary.json (status "running" until finish(), "error" when a
+// call fails), probes.csv and the ParaView series.
+//
+// Under mpirun every rank opens the same session and makes the same calls
+// in the same order: the calls are collective.
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "app/run_scene.h"
+#include "core/types.h"
+
+namespace kerf {
+
+class Session {
+ public:
+  /// Opens a run of `scene`: refuses what it cannot run or fit (before any
+  /// work), writes summary.json, builds the body, its system, stepper and
+  /// probes, and writes the output of step 0.
+  explicit Session(const Scene& scene, const RunOptions& options = {});
+  /// An unfinished session is finished (its summary written), a failed one left as it failed.
+  ~Session();
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  /// One step of the scene's integrator, then the cuts brought up to the
+  /// new time and the output the step is due (the last step's always).
+  /// Throws when every step was taken, and after a failure.
+  void step();
+  /// Every step the scene asks for taken (solve.duration / solve.dt; static: solve.load_steps).
+  bool done() const;
+  int steps_taken() const;
+  int step_count() const;
+  /// A call failed (the summary says "error"): the session takes no more steps.
+  bool failed() const;
+  /// s (static: the load factor, 0 to 1).
+  double time() const;
+  double time_step() const;
+
+  /// The displacement (m) and velocity (m/s) of every node, dofs_per_node()
+  /// entries a node, after the last step (a run stepping its ranks' pieces
+  /// gathers them).
+  const Vector& displacement();
+  const Vector& velocity();
+  int dofs_per_node() const;
+  Index node_count() const;
+  /// The scene's probes now, as summary.json's `probes` holds them.
+  nlohmann::ordered_json probes();
+
+  /// Ends the run where it stands: the last state written if it was not,
+  /// summary.json with status "ok" and the run's figures. A session finishes once.
+  RunOutcome finish();
+
+ private:
+  struct Run;
+  std::unique_ptr<Run> run_;
+};
+
+}  // namespace kerf

@@ -1,0 +1,111 @@
+// A session stepped by its caller (app/session.h): what `kerf run` does is a
+// loop over one, so a session read between its steps must give that run's
+// answer to the last digit, and one ended early must leave readable results
+// where it stopped.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+#include "app/session.h"
+#include "core/check.h"
+#include "problem/scene_reader.h"
+#include "support/test_support.h"
+
+namespace kerf {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+std::string file_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+Scene quiet_scene(const std::string& file, std::vector<std::string> overrides, const std::string& directory) {
+  overrides.push_back("output.dir=" + testing::output_directory(directory));
+  return read_scene(testing::source_path(file), overrides);
+}
+
+RunOptions quiet() {
+  RunOptions options;
+  options.quiet = true;
+  return options;
+}
+
+struct GrowingCutCase {
+  const char* name;
+  const char* scene;
+  std::vector<std::string> overrides;
+};
+
+// A cut growing through the body as it moves: nodal integration and EFG
+// update their shape functions in place, FEM splits its cells anew.
+const std::vector<GrowingCutCase> growing_cut_cases = {
+    {"nodal", "scenes/cutting_2d.yaml", {"solve.duration=6e-4"}},
+    {"efg", "scenes/cutting_2d.yaml",
+     {"discretization.method=efg", "solve.dt=1e-5", "solve.duration=6e-4",
+      "discretization.meshless.nitsche_safety=8"}},
+    {"fem_split", "scenes/organ_cut.yaml",
+     {"discretization.method=fem", "cuts.0.fem=split", "solve.duration=0.11", "output.vtk={every: 40}"}},
+};
+
+TEST(Session, ReadBetweenItsStepsGivesTheBatchRunsAnswerToTheLastDigit) {
+  for (const GrowingCutCase& c : growing_cut_cases) {
+    const std::string batch_dir = std::string(c.name) + "_batch", session_dir = std::string(c.name) + "_session";
+    const json batch = run_scene(quiet_scene(c.scene, c.overrides, batch_dir), quiet()).summary;
+    Session session(quiet_scene(c.scene, c.overrides, session_dir), quiet());
+    double last_time = session.time();
+    while (!session.done()) {
+      session.step();
+      EXPECT_GT(session.time(), last_time) << c.name;
+      last_time = session.time();
+      const Vector& u = session.displacement();
+      ASSERT_EQ(u.size(), session.node_count() * session.dofs_per_node()) << c.name;
+      EXPECT_TRUE(u.allFinite()) << c.name;
+      EXPECT_EQ(session.velocity().size(), u.size()) << c.name;
+      (void)session.probes();
+    }
+    const json stepped = session.finish().summary;
+    EXPECT_EQ(stepped["probes"].dump(), batch["probes"].dump()) << c.name;
+    EXPECT_EQ(stepped["counts"].dump(), batch["counts"].dump()) << c.name;
+    EXPECT_GT(stepped["timing"]["cut_update_ms"]["count"].get<int>(), 0) << c.name;  // the cut grew
+    EXPECT_EQ(file_text(testing::output_path(session_dir) + "/probes.csv"),
+              file_text(testing::output_path(batch_dir) + "/probes.csv"))
+        << c.name;
+  }
+}
+
+TEST(Session, EndedEarlyLeavesItsResultsWhereItStopped) {
+  Session session(quiet_scene("scenes/organ_cut.yaml", {"solve.duration=0.1", "output.vtk={every: 1000}"}, "early"),
+                  quiet());
+  for (int i = 0; i < 7; ++i) session.step();
+  const double stopped_at = session.time();
+  const json summary = session.finish().summary;
+  EXPECT_EQ(summary["status"], "ok");
+  const json written = json::parse(file_text(testing::output_path("early") + "/summary.json"));
+  EXPECT_EQ(written["status"], "ok");
+  // probes.csv's last row is the state the session stopped at, and the ParaView series ends there too.
+  std::istringstream rows(file_text(testing::output_path("early") + "/probes.csv"));
+  std::string row, last;
+  while (std::getline(rows, row))
+    if (!row.empty()) last = row;
+  EXPECT_NEAR(std::stod(last.substr(0, last.find(','))), stopped_at, 1e-12);
+  testing::expect_contains(file_text(testing::output_path("early") + "/organ_cut.pvd"), "organ_cut_0001.vtu");
+}
+
+TEST(Session, RefusesAStepPastItsEndNamingWhatSetsIt) {
+  Session session(quiet_scene("scenes/plate_tension_2d.yaml", {"solve.load_steps=2"}, "past_end"), quiet());
+  session.step();
+  session.step();
+  EXPECT_TRUE(session.done());
+  testing::expect_mentions(testing::error_message([&] { session.step(); }),
+                           {"every step", "solve.load_steps", "finish"});
+  EXPECT_EQ(session.finish().summary["status"], "ok");
+  testing::expect_mentions(testing::error_message([&] { session.finish(); }), {"finished already"});
+}
+
+}  // namespace
+}  // namespace kerf
