@@ -32,8 +32,8 @@ struct RunOutcome {
 
 /// Refuses, before any work, what the scene asks for that cannot run
 /// (validate(), then the cuts' geometry: degenerate or folding cuts); returns
-/// the cut timeline the run shares.
-SharedCuts refuse_unrunnable(const Scene& scene);
+/// the cut timeline the run shares (a session extends it, the rest read it).
+std::shared_ptr<CutTimeline> refuse_unrunnable(const Scene& scene);
 
 /// Writes summary.json (status "ok"), probes.csv and the ParaView series.
 /// On failure, writes summary.json with status "error" and the message, keeps

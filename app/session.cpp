@@ -118,9 +118,9 @@ std::vector<MemoryMarks> memory_of_every_rank(const MemoryMarks& mine, const Ran
 
 }  // namespace
 
-SharedCuts refuse_unrunnable(const Scene& scene) {
+std::shared_ptr<CutTimeline> refuse_unrunnable(const Scene& scene) {
   validate(scene);
-  return std::make_shared<const CutTimeline>(scene);
+  return std::make_shared<CutTimeline>(scene);
 }
 
 /// What an open session holds. Its members are made in this order (the
@@ -142,6 +142,7 @@ struct Session::Run {
 
   const Scene scene;
   const RunOptions options;
+  const std::shared_ptr<CutTimeline> timeline;  // extend_cut's; the run's parts read it as `cuts`
   const SharedCuts cuts;
   RunOutcome outcome;
   std::string summary_path;
@@ -159,7 +160,7 @@ struct Session::Run {
 };
 
 Session::Run::Run(const Scene& scene_in, const RunOptions& options_in)
-    : scene(scene_in), options(options_in), cuts(refuse_unrunnable(scene)) {
+    : scene(scene_in), options(options_in), timeline(refuse_unrunnable(scene)), cuts(timeline) {
   outcome.directory = options.out_dir.empty() ? scene.output.dir : options.out_dir;
   if (options.writes_files()) std::filesystem::create_directories(outcome.directory);
   if (options.mpi.ranks.distributed()) wait_for_every_rank();  // they write pieces in it
@@ -274,6 +275,13 @@ void Session::step() {
   KERF_CHECK(!done(), "the session took every step its scene asks for (", step_count(),
              "; solve.duration / solve.dt, or solve.load_steps): finish it");
   run_->guarded([&] { run_->step(); });
+}
+
+void Session::extend_cut(Index cut, std::span<const Vec3> vertices) {
+  // A refused piece is the caller's error, not the run's: the cut and the summary stay as they were.
+  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
+             ": its cuts take no more vertices");
+  run_->timeline->extend(cut, vertices, run_->state.t);
 }
 
 bool Session::done() const { return run_->taken >= run_->parts.stepper->step_count(); }

@@ -9,6 +9,7 @@
 // Under mpirun every rank opens the same session and makes the same calls
 // in the same order: the calls are collective.
 #include <memory>
+#include <span>
 #include <nlohmann/json.hpp>
 
 #include "app/run_scene.h"
@@ -31,6 +32,15 @@ class Session {
   /// new time and the output the step is due (the last step's always).
   /// Throws when every step was taken, and after a failure.
   void step();
+  /// Feeds cut `cut` (its index in the scene's `cuts`) the next vertices, as a
+  /// blade moved by a person gives them: the next polyline vertex (2D), the
+  /// next vertex pair of a strip (3D: the blade's two ends; m). They take
+  /// the time the session has reached, and the end of the next step brings
+  /// the body up to the pieces they complete: the same as a scene giving
+  /// these vertices a time within that step. A cut declared with no vertices
+  /// (`strip: []`) is fed only this way. Throws, the cut left as it was,
+  /// when a new piece is degenerate or folds the cut.
+  void extend_cut(Index cut, std::span<const Vec3> vertices);
   /// Every step the scene asks for taken (solve.duration / solve.dt; static: solve.load_steps).
   bool done() const;
   int steps_taken() const;

@@ -1,11 +1,38 @@
 #include "discretization/cut_timeline.h"
 
 #include <algorithm>
+#include <string>
+
+#include "core/check.h"
 
 namespace kerf {
 
-CutTimeline::CutTimeline(const Scene& scene) : cuts_(scene.cuts) {
-  for (const Cut& c : cuts_) surfaces_.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
+CutTimeline::CutTimeline(const Scene& scene)
+    : dimension_(scene.dimension), cuts_(scene.cuts) {
+  for (const Cut& c : cuts_) {
+    surfaces_.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
+    cut_grows_.push_back(c.grows());
+  }
+}
+
+bool CutTimeline::grows() const { return std::find(cut_grows_.begin(), cut_grows_.end(), 1) != cut_grows_.end(); }
+
+void CutTimeline::extend(Index c, std::span<const Vec3> vertices, double time) {
+  KERF_CHECK(c >= 0 && c < cut_count(), "cut ", c, " does not exist: the scene has ", cut_count(), " cut(s)");
+  Cut& cut = cuts_[c];
+  const std::string key = "cuts." + std::to_string(c);
+  KERF_CHECK(cut.live, key, ".live: the cut is not declared live, so the run was set up for its scene's vertices "
+             "alone; expected live: true in the scene to feed it at run time");
+  KERF_CHECK(!vertices.empty(), key, ": no vertex to extend the cut by");
+  KERF_CHECK(cut.times.empty() || time >= cut.times.back(), key, ": a vertex at t = ", time,
+             " s comes before the cut's last vertex (t = ", cut.times.back(), " s); expected times that never decrease");
+  std::vector<Vec3> all = cut.vertices;
+  all.insert(all.end(), vertices.begin(), vertices.end());
+  std::vector<double> times = cut.times;
+  times.resize(all.size(), time);
+  surfaces_[c] = cut_surface(dimension_, all, times, cut.where.describe() + " (" + key + ", fed at run time)");
+  cut.vertices = std::move(all);
+  cut.times = std::move(times);
 }
 
 Index CutTimeline::pieces_at(double t) const {
@@ -14,14 +41,10 @@ Index CutTimeline::pieces_at(double t) const {
   return count;
 }
 
-bool CutTimeline::grows() const {
-  return std::any_of(surfaces_.begin(), surfaces_.end(), [](const CutSurface& s) { return s.appears.back() > 0.0; });
-}
-
 bool CutTimeline::grows_by_splitting() const {
   bool any = false;
   for (std::size_t c = 0; c < cuts_.size(); ++c) {
-    if (surfaces_[c].appears.back() <= 0.0) continue;
+    if (!cut_grows_[c]) continue;
     if (cuts_[c].fem != FemCut::split) return false;
     any = true;
   }

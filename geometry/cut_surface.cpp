@@ -77,13 +77,12 @@ CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> 
   cut.dimension = dim;
   cut.where = std::move(where);
   const Index corners = dim == 2 ? 2 : 3, n = static_cast<Index>(vertices.size());
-  KERF_CHECK(n >= corners, cut.where, ": a ", dim == 2 ? "polyline" : "strip", " needs at least ", corners,
-             " vertices, found ", n);
   KERF_CHECK(static_cast<Index>(times.size()) == n, cut.where, ": expected one time per vertex (", n, "), found ",
              times.size());
   if (dim == 2)
     for (Vec3& v : vertices) v.z() = 0.0;
-  for (const Vec3& v : vertices) cut.extent = std::max(cut.extent, (v - vertices.front()).norm());
+  for (Index k = 0; k < std::min(n, corners); ++k)
+    cut.extent = std::max(cut.extent, (vertices[k] - vertices.front()).norm());
   const double extent = cut.extent;
   for (Index k = 0; k + corners <= n; ++k) {
     CutPiece p = make_piece(dim, vertices, k);

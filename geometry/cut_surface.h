@@ -31,7 +31,10 @@ struct CutSurface {
   std::vector<CutPiece> pieces;
   std::vector<double> appears;  // s, one per piece
   std::string where;            // the scene location, for messages
-  double extent = 0.0;          // m: largest distance of a vertex from the first
+  // m: the first piece's size (its corners' largest distance from the first
+  // vertex), the scale of the cut's tolerances: fixed once the first piece
+  // exists, so a cut fed vertex by vertex has those of the same cut given whole.
+  double extent = 0.0;
 
   Index piece_count() const { return static_cast<Index>(pieces.size()); }
   /// Pieces present at time t: they appear in order, so a prefix.
@@ -41,6 +44,7 @@ struct CutSurface {
 /// Builds and checks a cut: refuses zero-length segments, collapsed
 /// triangles, and a cut that folds over its common line or plane (at any
 /// stage of its growth), naming `where` and the offending vertex or piece.
+/// Fewer vertices than a piece has corners make no piece yet (a cut fed at run time).
 CutSurface cut_surface(int dimension, std::vector<Vec3> vertices, std::vector<double> times, std::string where);
 
 /// The common frame of pieces [first, last): origin at the size-weighted

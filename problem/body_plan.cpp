@@ -25,7 +25,7 @@ std::string whole_on_every_rank(const Scene& scene) {
   for (std::size_t i = 0; i < scene.cuts.size(); ++i) {
     const Cut& cut = scene.cuts[i];
     const std::string key = "cuts." + std::to_string(i);
-    if (std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; }))
+    if (cut.grows())
       return key + ".times: a growing FEM cut meshes the body anew at each growth, so every rank builds and "
                    "assembles the whole body; only the linear solve is shared";
     if (cut.fem == FemCut::split)

@@ -138,9 +138,13 @@ struct ContactSphere {
 };
 
 struct Cut {
-  std::vector<Vec3> vertices;  // 3D strip vertices or 2D polyline vertices
+  std::vector<Vec3> vertices;  // 3D strip vertices or 2D polyline vertices; none: fed at run time (live)
   bool is_strip = false;
   std::vector<double> times;   // one per vertex (s)
+  /// A session may feed it vertices as the run goes (Session::extend_cut): `live: true`, or no vertex given.
+  bool live = false;
+  /// Pieces appear after t = 0 (a live cut, or a time > 0).
+  bool grows() const { return live || (!times.empty() && times.back() > 0.0); }
   Enrichment enrichment = Enrichment::grid;
   double grid_spacing = 0.0005;  // m
   GridLookup grid_lookup = GridLookup::exact;
@@ -234,8 +238,7 @@ struct Scene {
 inline CutCells cut_cells_of(const Scene& scene) {
   const MeshlessOptions& m = scene.discretization.meshless;
   if (m.cut_cells != CutCells::automatic) return m.cut_cells;
-  const bool grows = std::any_of(scene.cuts.begin(), scene.cuts.end(),
-                                 [](const Cut& c) { return !c.times.empty() && c.times.back() > 0.0; });
+  const bool grows = std::any_of(scene.cuts.begin(), scene.cuts.end(), [](const Cut& c) { return c.grows(); });
   const bool built_for = scene.discretization.method == Method::nodal && m.gradient == NodalGradient::direct &&
                          m.vci == VciOrder::none;
   return built_for && !grows ? CutCells::split : CutCells::whole;

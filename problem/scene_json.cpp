@@ -50,7 +50,8 @@ json cut_json(const Cut& c, int dim) {
             {"times", c.times},
             {"enrichment", to_string(c.enrichment)},
             {"grid", {{"spacing", c.grid_spacing}, {"lookup", to_string(c.grid_lookup)}}},
-            {"fem", to_string(c.fem)}};
+            {"fem", to_string(c.fem)},
+            {"live", c.live}};
   return j;
 }
 

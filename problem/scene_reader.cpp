@@ -220,7 +220,7 @@ ContactSphere read_contact(const YamlField& f, int dim) {
 Cut read_cut(const YamlField& f, int dim) {
   Cut cut;
   cut.where = f.location();
-  f.allow_only({"strip", "polyline", "times", "enrichment", "grid", "fem"});
+  f.allow_only({"strip", "polyline", "times", "enrichment", "grid", "fem", "live"});
   std::string kind = f.exactly_one_of({"strip", "polyline"});
   cut.is_strip = kind == "strip";
   YamlField v = f[kind];
@@ -240,6 +240,8 @@ Cut read_cut(const YamlField& f, int dim) {
     if (g.has("lookup")) cut.grid_lookup = g["lookup"].enumeration<GridLookup>();
   }
   if (f.has("fem")) cut.fem = f["fem"].enumeration<FemCut>();
+  // A cut given no vertex can only be fed at run time: it is live whatever the key says.
+  cut.live = cut.vertices.empty() || (f.has("live") && f["live"].boolean());
   return cut;
 }
 

@@ -203,9 +203,9 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
             std::string("'") + kind + "' does not fit dimension " + std::to_string(dim) + "; expected " +
                 (dim == 3 ? "strip (3D)" : "polyline (2D)"));
   const std::size_t minimum = cut.is_strip ? 3 : 2;
-  r.require(cut.vertices.size() >= minimum, key + "." + kind,
-            "expected a list of at least " + std::to_string(minimum) + " vertices, found " +
-                std::to_string(cut.vertices.size()));
+  r.require(cut.live || cut.vertices.size() >= minimum, key + "." + kind,
+            "expected a list of at least " + std::to_string(minimum) + " vertices (or live: true, or [] for a cut "
+                "fed at run time), found " + std::to_string(cut.vertices.size()));
   r.require(cut.times.size() == cut.vertices.size(), key + ".times",
             "expected one time per vertex (" + std::to_string(cut.vertices.size()) + "), found " +
                 std::to_string(cut.times.size()));
@@ -213,7 +213,7 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
     r.in_range(cut.times[i] >= cut.times[i - 1], item(key + ".times", i), cut.times[i], "times that never decrease");
   r.in_range(cut.grid_spacing > 0.0, key + ".grid.spacing", cut.grid_spacing, "spacing > 0 (m)");
   // What is not built yet.
-  const bool grows = std::any_of(cut.times.begin(), cut.times.end(), [](double t) { return t > 0.0; });
+  const bool grows = cut.grows();
   const MethodDescriptor& method = method_descriptor(s.discretization.method);
   r.require(s.contact.empty() || !grows || !method.rebuilt_as_cut_grows, key + ".times",
             "contact with a growing cut in fem is not built yet (each growth meshes the body anew, and the spheres' "
@@ -230,11 +230,12 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
   // cells' face samples expect it.
   const DiscretizationOptions& d = s.discretization;
   r.require(!(d.method == Method::nodal && d.meshless.gradient == NodalGradient::smoothed &&
-              cut.enrichment == Enrichment::grid && cut.grid_lookup == GridLookup::interpolated && kinked(cut)),
+              cut.enrichment == Enrichment::grid && cut.grid_lookup == GridLookup::interpolated &&
+              (kinked(cut) || cut.live)),
             key + ".grid.lookup",
             "value interpolated: with discretization.meshless.gradient smoothed it puts the jump off a kinked cut "
             "near its kinks (a 14-30% error in the opening measured); expected lookup: exact, gradient: direct, or a "
-            "cut that does not turn");
+            "cut that does not turn (a cut fed at run time may)");
 }
 
 constexpr double max_steps = 1e9;

@@ -270,6 +270,20 @@ PYBIND11_MODULE(_kerf, m) {
       .def("step", &PythonSession::step, py::arg("count") = 1,
            "Takes `count` steps of the scene's integrator (each with its cut growth and output)")
       .def("run", &PythonSession::run_to_end, "Takes every step left")
+      .def(
+          "extend_cut",
+          [](PythonSession& s, Index cut, const std::vector<std::vector<double>>& vertices) {
+            std::vector<Vec3> points;
+            for (const std::vector<double>& v : vertices) {
+              KERF_CHECK(v.size() == 2 || v.size() == 3, "Session.extend_cut: a vertex of ", v.size(),
+                         " coordinates; expected 2 (2D) or 3 (m)");
+              points.emplace_back(v[0], v[1], v.size() == 3 ? v[2] : 0.0);
+            }
+            s.session().extend_cut(cut, points);
+          },
+          py::arg("cut"), py::arg("vertices"),
+          "Feeds a live cut (scene: live: true, or strip: []) its next vertices: a polyline's next vertex, a "
+          "strip's next pair (the blade's two ends, m); their pieces appear by the end of the next step")
       .def("finish", [](PythonSession& s) { s.finished_ = true; return s.finish(); },
            "Ends the run where it stands: summary.json with status 'ok'; returns the kerf.Result")
       .def_property_readonly("done", [](PythonSession& s) { return s.session().done(); })

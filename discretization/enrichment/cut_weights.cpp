@@ -103,7 +103,7 @@ std::vector<Index> CutWeights::advance_to(double t) {
     part.pieces = now;
     const std::vector<Index> reached = reached_by(surface, before, now);
     if (auto* grid = dynamic_cast<GridRule*>(part.rule.get())) {
-      grid->grow(now, reached, changed);
+      grid->grow(surface, now, reached, changed);
       continue;
     }
     // First pieces, or a baseline rule: rebuilt whole. A new piece changes

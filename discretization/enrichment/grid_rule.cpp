@@ -48,7 +48,11 @@ void GridRule::factors(std::span<const Index> nodes, const Vec3& x, std::span<We
   }
 }
 
-void GridRule::grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed) {
+void GridRule::grow(const CutSurface& cut, Index pieces, std::span<const Index> reached,
+                    std::vector<Index>& changed) {
+  // Assigned in place: the grids point at this object, and the pieces they
+  // were built from stay the same at the front of the new copy.
+  if (cut.piece_count() != cut_.piece_count()) cut_ = cut;
   std::unique_ptr<EnrichmentGrid> before = std::move(grid_);
   grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_, *before);
   const std::vector<char> columns = grid_->changed_columns(*before);

@@ -33,7 +33,9 @@ class GridRule final : public EnrichmentRule {
   /// changed: the newly enriched, and the enriched whose support reaches a
   /// lattice column where phi changed (with interpolation, every enriched
   /// node when the cut turned and the lattice with it).
-  void grow(Index pieces, std::span<const Index> reached, std::vector<Index>& changed);
+  /// `cut`: the cut as it stands now, which may hold pieces this rule's copy
+  /// lacks (a cut fed at run time); its earlier pieces are this rule's.
+  void grow(const CutSurface& cut, Index pieces, std::span<const Index> reached, std::vector<Index>& changed);
 
   const EnrichmentGrid& grid() const { return *grid_; }
   Index enriched_count() const { return static_cast<Index>(enriched_list_.size()); }

@@ -140,3 +140,21 @@ def test_a_session_refuses_a_step_past_its_end_and_a_bad_count(tmp_path):
         session.step()
     result = session.finish()
     assert result.summary["status"] == "ok" and result.displacement.shape[0] > 0
+
+
+def test_a_cut_fed_from_python_as_the_run_goes_gives_the_scripted_runs_answer(tmp_path):
+    # cutting_2d's polyline: two vertices at t = 0, then one every 1e-4 s; dt = 2e-5 s.
+    scripted = kerf.run(CUTTING, SHORT_CUT, out=str(tmp_path / "scripted")).summary
+    cut = kerf.load_scene(CUTTING, SHORT_CUT).to_dict()["cuts"][0]
+    vertices, times = cut["polyline"], cut["times"]
+    live = [*SHORT_CUT, f"cuts.0.polyline={vertices[:2]}", "cuts.0.times=[0, 0]", "cuts.0.live=true"]
+    with kerf.Session(CUTTING, live, out=str(tmp_path / "live")) as session:
+        fed = 2
+        while not session.done:
+            while fed < len(times) and times[fed] <= session.time + session.dt:
+                session.extend_cut(0, [vertices[fed]])
+                fed += 1
+            session.step()
+        assert session.probes == scripted["probes"]
+    with pytest.raises(kerf.Error, match="cuts.0.live"):
+        kerf.Session(CUTTING, SHORT_CUT, out=str(tmp_path / "not_live")).extend_cut(0, [[0.0, 0.0]])

@@ -48,6 +48,7 @@ const std::vector<GrowingCutCase> growing_cut_cases = {
     {"efg", "scenes/cutting_2d.yaml",
      {"discretization.method=efg", "solve.dt=1e-5", "solve.duration=6e-4",
       "discretization.meshless.nitsche_safety=8"}},
+    {"nodal_organ", "scenes/organ_cut.yaml", {"solve.duration=0.16", "output.vtk={every: 1000}"}},  // through a node
     {"fem_split", "scenes/organ_cut.yaml",
      {"discretization.method=fem", "cuts.0.fem=split", "solve.duration=0.11", "output.vtk={every: 40}"}},
 };
@@ -76,6 +77,64 @@ TEST(Session, ReadBetweenItsStepsGivesTheBatchRunsAnswerToTheLastDigit) {
               file_text(testing::output_path(batch_dir) + "/probes.csv"))
         << c.name;
   }
+}
+
+/// Steps `live` to its end, feeding cut 0 the vertices of `whole` (the same
+/// cut given with its times) that `live` lacks, each within the step its time
+/// falls in: after the session reached t, before the step that ends past it.
+json feed_the_cut_live(const Scene& whole, Scene live) {
+  const Cut& cut = whole.cuts.at(0);
+  std::size_t fed = 0;
+  while (fed < cut.vertices.size() && cut.times[fed] <= 0.0) ++fed;
+  live.cuts.at(0).vertices.assign(cut.vertices.begin(), cut.vertices.begin() + fed);
+  live.cuts.at(0).times.assign(cut.times.begin(), cut.times.begin() + fed);
+  live.cuts.at(0).live = true;
+  Session session(live, quiet());
+  while (!session.done()) {
+    std::vector<Vec3> next;
+    for (; fed < cut.vertices.size() && cut.times[fed] <= session.time() + session.time_step(); ++fed)
+      next.push_back(cut.vertices[fed]);
+    if (!next.empty()) session.extend_cut(0, next);
+    session.step();
+  }
+  return session.finish().summary;
+}
+
+// The scene's cut fed vertex by vertex as the run goes, the way a blade moved
+// by a person gives it: the run the scene gives whole, to the last digit.
+TEST(Session, ACutFedAsTheRunGoesGivesTheBatchRunsAnswerToTheLastDigit) {
+  for (const GrowingCutCase& c : growing_cut_cases) {
+    const std::string batch_dir = std::string(c.name) + "_batch", live_dir = std::string(c.name) + "_live";
+    const Scene whole = quiet_scene(c.scene, c.overrides, batch_dir);
+    const json batch = run_scene(whole, quiet()).summary;
+    const json live = feed_the_cut_live(whole, quiet_scene(c.scene, c.overrides, live_dir));
+    EXPECT_EQ(live["probes"].dump(), batch["probes"].dump()) << c.name;
+    EXPECT_EQ(live["timing"]["cut_update_ms"]["count"], batch["timing"]["cut_update_ms"]["count"]) << c.name;
+    EXPECT_EQ(file_text(testing::output_path(live_dir) + "/probes.csv"),
+              file_text(testing::output_path(batch_dir) + "/probes.csv"))
+        << c.name;
+  }
+}
+
+TEST(Session, RefusesAPieceThatFoldsTheCutAndKeepsTheCutAsItWas) {
+  Scene scene = quiet_scene("scenes/organ_cut.yaml", {"solve.duration=0.01", "cuts.0.strip=[]", "cuts.0.times=[]"},
+                            "fold");
+  Session session(scene, quiet());
+  const std::vector<Vec3> blade{{-0.045, 0, 0.02}, {-0.045, 0, -0.004}, {-0.03, 0, 0.02}, {-0.03, 0, -0.004}};
+  session.extend_cut(0, blade);
+  session.step();
+  // The blade turned back on itself: the next triangle faces the other way.
+  const std::vector<Vec3> folded{{-0.045, 0.0, 0.02}, {-0.045, 0.0, -0.004}};
+  testing::expect_mentions(testing::error_message([&] { session.extend_cut(0, folded); }),
+                           {"cuts.0", "fed at run time", "folds"});
+  testing::expect_mentions(testing::error_message([&] { session.extend_cut(1, blade); }), {"cut 1", "1 cut"});
+  Session scripted(quiet_scene("scenes/organ_cut.yaml", {"solve.duration=0.01"}, "scripted"), quiet());
+  testing::expect_mentions(testing::error_message([&] { scripted.extend_cut(0, blade); }),
+                           {"cuts.0.live", "not declared live", "live: true"});
+  const std::vector<Vec3> onward{{-0.015, 0, 0.02}, {-0.015, 0, -0.004}};
+  session.extend_cut(0, onward);  // the cut as it was takes the next pair
+  while (!session.done()) session.step();
+  EXPECT_EQ(session.finish().summary["status"], "ok");
 }
 
 TEST(Session, EndedEarlyLeavesItsResultsWhereItStopped) {

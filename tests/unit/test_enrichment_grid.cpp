@@ -88,7 +88,7 @@ void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool
     for (std::size_t I = 0; I < c.nodes.size(); ++I)
       if (distance_to_cut(cut, pieces - 1, pieces, c.nodes[I]) < c.support[I]) new_reach.push_back(static_cast<Index>(I));
     std::vector<Index> changed;
-    growing.grow(pieces, new_reach, changed);
+    growing.grow(cut, pieces, new_reach, changed);
     std::vector<char> reported(c.nodes.size(), 0);
     for (Index I : changed) reported[I] = 1;
     const GridRule fresh(cut, pieces, spacing, lookup, c.nodes, c.support, reached(cut, pieces, c));
