@@ -146,7 +146,6 @@ struct Session::Run {
   const SharedCuts cuts;
   RunOutcome outcome;
   std::string summary_path;
-  InterruptScope interrupt;
   std::optional<InterruptLastWords> last_words;
   SolverState state;
   RunParts parts;

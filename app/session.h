@@ -8,6 +8,11 @@
 //
 // Under mpirun every rank opens the same session and makes the same calls
 // in the same order: the calls are collective.
+//
+// A session leaves the process's signals to its host. Within an
+// InterruptScope (core/interrupt.h: `kerf run` holds one for the whole run,
+// the Python module one for each call) Ctrl-C or SIGTERM stops the call at
+// its next check with kerf::Interrupted, the summary saying so.
 #include <memory>
 #include <span>
 #include <nlohmann/json.hpp>

@@ -118,21 +118,25 @@ class PythonSession {
     options.force = force;
     options.keep_final_body = true;
     py::gil_scoped_release free_python;
+    const InterruptScope interrupt;  // for this call alone: between calls Python keeps its own Ctrl-C
     session_ = std::make_unique<Session>(scene, options);
   }
   void step(int count) {
     KERF_CHECK(count >= 1, "Session.step(count): count is ", count, "; expected 1 or more");
     py::gil_scoped_release free_python;
+    const InterruptScope interrupt;
     for (int i = 0; i < count; ++i) session_->step();
   }
   void run_to_end() {
     py::gil_scoped_release free_python;
+    const InterruptScope interrupt;
     while (!session_->done()) session_->step();
   }
   Result finish() {
     RunOutcome outcome;
     {
       py::gil_scoped_release free_python;
+      const InterruptScope interrupt;
       outcome = session_->finish();
     }
     return Result{outcome.directory, to_python(outcome.summary), outcome.final_body,

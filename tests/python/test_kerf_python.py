@@ -158,3 +158,22 @@ def test_a_cut_fed_from_python_as_the_run_goes_gives_the_scripted_runs_answer(tm
         assert session.probes == scripted["probes"]
     with pytest.raises(kerf.Error, match="cuts.0.live"):
         kerf.Session(CUTTING, SHORT_CUT, out=str(tmp_path / "not_live")).extend_cut(0, [[0.0, 0.0]])
+
+
+def test_ctrl_c_stops_a_sessions_steps_and_python_keeps_its_own_between_them(tmp_path):
+    import signal
+    import threading
+    import time
+    session = kerf.Session(CUTTING, ["solve.duration=0.02"], out=str(tmp_path))
+    session.step()
+    with pytest.raises(KeyboardInterrupt):  # between steps: Python's own handler, as without a session
+        os.kill(os.getpid(), signal.SIGINT)
+        time.sleep(5)
+    timer = threading.Timer(0.5, lambda: os.kill(os.getpid(), signal.SIGINT))
+    timer.start()
+    with pytest.raises(KeyboardInterrupt, match="interrupted"):  # within run(): kerf stops at its next check
+        session.run()
+    timer.join()
+    assert 1 < session.steps_taken < session.step_count
+    with open(tmp_path / "summary.json") as f:
+        assert json.load(f)["status"] == "interrupted"
