@@ -133,6 +133,7 @@ class PythonSession {
     while (!session_->done()) session_->step();
   }
   Result finish() {
+    finished_ = true;  // also when it fails: its summary then says why
     RunOutcome outcome;
     {
       py::gil_scoped_release free_python;
@@ -144,9 +145,7 @@ class PythonSession {
   }
   /// Leaving a `with` block finishes the session (results readable even after an exception in the block).
   void close() {
-    if (finished_ || session_->failed()) return;  // a failed one's summary says why already
-    finished_ = true;
-    finish();
+    if (!finished_ && !session_->failed()) finish();  // a failed one's summary says why already
   }
   Session& session() { return *session_; }
   /// A property's getter: the session's vector `state` as nodes x dofs_per_node, read-only, keeping the
@@ -162,10 +161,10 @@ class PythonSession {
       return py::array(array);
     };
   }
-  bool finished_ = false;
 
  private:
   std::unique_ptr<Session> session_;
+  bool finished_ = false;
 };
 
 /// A run's record as Python values: what read_outcome gives C++.
@@ -288,7 +287,7 @@ PYBIND11_MODULE(_kerf, m) {
           py::arg("cut"), py::arg("vertices"),
           "Feeds a live cut (scene: live: true, or strip: []) its next vertices: a polyline's next vertex, a "
           "strip's next pair (the blade's two ends, m); their pieces appear by the end of the next step")
-      .def("finish", [](PythonSession& s) { s.finished_ = true; return s.finish(); },
+      .def("finish", &PythonSession::finish,
            "Ends the run where it stands: summary.json with status 'ok'; returns the kerf.Result")
       .def_property_readonly("done", [](PythonSession& s) { return s.session().done(); })
       .def_property_readonly("steps_taken", [](PythonSession& s) { return s.session().steps_taken(); })
