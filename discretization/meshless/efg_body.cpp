@@ -105,7 +105,6 @@ EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, const MpiContext& mp
     : MeshlessBody(scene, std::move(domain)),
       mpi_(mpi),
       points_(rank_points(domain_, scene.discretization.meshless.quadrature_order, mpi.ranks, others_reaching_own_)) {
-  total_points_ = static_cast<Index>(mpi_.sum_on_every_rank(static_cast<double>(points_.point_count())));
   reduced_basis_points_ =
       static_cast<Index>(mpi_.sum_on_every_rank(static_cast<double>(points_.shapes().reduced_basis_points())));
   stress_.assign(points_.point_count(), Mat3::Zero());

@@ -34,7 +34,9 @@ class EfgBody final : public MeshlessBody,
   const std::vector<Index>& touched_nodes() const override { return touched_nodes_; }
 
   /// Every rank's Gauss points.
-  Index element_count() const override { return total_points_; }
+  Index element_count() const override {
+    return domain_.background().cell_count() * points_.schedule().group_size;
+  }
   /// This rank's Gauss points (every point in a serial run), cell by cell.
   const PointIntegration& points() const { return points_; }
 
@@ -77,7 +79,6 @@ class EfgBody final : public MeshlessBody,
   // lists of the other ranks' Gauss points that reach this rank's own nodes.
   NeighborLists others_reaching_own_;
   PointIntegration points_;                         // this rank's cells' Gauss points
-  Index total_points_ = 0;                          // every rank's
   Index reduced_basis_points_ = 0;                  // every rank's points a cut left a reduced basis
   std::pair<Index, Index> own_nodes_;               // its rows: every node in a serial run
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
