@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "geometry/cut_projection.h"
 
 namespace kerf {
 namespace {
@@ -49,21 +50,6 @@ CutPiece make_piece(int dim, const std::vector<Vec3>& v, Index k) {
   p.normal = n.normalized();
   p.centre = (p.corner[0] + p.corner[1] + p.corner[2]) / 3.0;
   return p;
-}
-
-/// Closest point of triangle (a, b, c) to q, all in one plane's 2D coordinates.
-Eigen::Vector2d closest_on_edges(const Eigen::Vector2d& q, const std::array<Eigen::Vector2d, 3>& t) {
-  Eigen::Vector2d best = t[0];
-  double best_distance = std::numeric_limits<double>::infinity();
-  for (int e = 0; e < 3; ++e) {
-    const Eigen::Vector2d a = t[e], d = t[(e + 1) % 3] - a;
-    const double length2 = d.squaredNorm();
-    const double u = length2 > 0.0 ? std::clamp((q - a).dot(d) / length2, 0.0, 1.0) : 0.0;
-    const Eigen::Vector2d c = a + u * d;
-    const double distance = (q - c).squaredNorm();
-    if (distance < best_distance) best_distance = distance, best = c;
-  }
-  return best;
 }
 
 }  // namespace
@@ -177,32 +163,11 @@ CutRegion cut_region(const CutSurface& cut, Index first, Index last, const CutFr
     }
   } else {
     // The common plane's coordinates; the projected triangles keep their winding.
-    auto in_plane = [&](const Vec3& p) {
-      const Vec3 d = p - frame.origin;
-      return Eigen::Vector2d(frame.axis[0].dot(d), frame.axis[1].dot(d));
-    };
-    const Eigen::Vector2d q = in_plane(x);
-    const Point2 qp(q.x(), q.y());
-    double best = std::numeric_limits<double>::infinity();
-    Eigen::Vector2d nearest = q;
-    for (Index k = first; k < last; ++k) {
-      const auto& c = cut.pieces[k].corner;
-      const std::array<Eigen::Vector2d, 3> t{in_plane(c[0]), in_plane(c[1]), in_plane(c[2])};
-      const Kernel::Triangle_2 triangle(Point2(t[0].x(), t[0].y()), Point2(t[1].x(), t[1].y()),
-                                        Point2(t[2].x(), t[2].y()));
-      if (triangle.bounded_side(qp) != CGAL::ON_UNBOUNDED_SIDE) {
-        best = 0.0, r.piece = k, nearest = q;
-        break;
-      }
-      const Eigen::Vector2d c2 = closest_on_edges(q, t);
-      const double distance = (q - c2).norm();
-      if (distance < best) best = distance, r.piece = k, nearest = c2;
-    }
-    r.d_plus = best;
-    if (best > 0.0) {
-      const Eigen::Vector2d g = (q - nearest) / best;
-      r.d_plus_gradient = g.x() * frame.axis[0] + g.y() * frame.axis[1];
-    }
+    const Eigen::Vector2d q = in_frame_plane(frame, x);
+    ProjectedNearest best;
+    for (Index k = first; k < last; ++k)
+      if (visit_projected(k, projected_piece(cut.pieces[k], frame), q, best)) break;
+    return region_from(cut, frame, x, q, best);
   }
   const CutPiece& p = cut.pieces[r.piece];
   r.s = p.normal.dot(x - p.corner[0]);

@@ -21,11 +21,13 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       pieces_(pieces),
       spacing_(spacing),
       frame_(common_frame(cut, 0, pieces)),
+      regions_(cut, 0, pieces, frame_),
       dim_(cut.dimension),
       anchor_(cut.vertices.front()) {
   size_lattice(padding);
   const bool grows =
       before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
+  const CutRegionIndex added(cut, grows ? before->pieces_ : 0, pieces_, frame_);
   ParallelFailure failure;
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c)
@@ -38,8 +40,11 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       }
       columns_[c] = before->columns_[old];
       if (columns_[c].d_plus == 0.0) return;  // over an earlier piece: it wins
-      const CutRegion added = cut_region(cut, before->pieces_, pieces_, frame_, x);
-      if (added.d_plus < columns_[c].d_plus) columns_[c] = column_of(added, x);
+      // A column no nearer the new pieces' boxes than its d+ keeps its region (a blade advancing a little
+      // each step changes the columns around its tip only).
+      if (added.distance_bound(x) > columns_[c].d_plus * (1.0 + 1e-12)) return;
+      const CutRegion region = added.region(x);
+      if (region.d_plus < columns_[c].d_plus) columns_[c] = column_of(region, x);
     });
   failure.rethrow_if_failed();
 }
@@ -124,7 +129,7 @@ Vec3 EnrichmentGrid::lattice_origin() const {
 }
 
 EnrichmentGrid::Column EnrichmentGrid::column_at(const Vec3& x) const {
-  return column_of(cut_region(*cut_, 0, pieces_, frame_, x), x);
+  return column_of(regions_.region(x), x);
 }
 
 EnrichmentGrid::Column EnrichmentGrid::column_of(const CutRegion& r, const Vec3& x) {
@@ -141,7 +146,7 @@ PhiValue EnrichmentGrid::phi_in(const Column& c, const Vec3& x) const {
   return phi_of(r);
 }
 
-PhiValue EnrichmentGrid::exact(const Vec3& x) const { return phi_of(cut_region(*cut_, 0, pieces_, frame_, x)); }
+PhiValue EnrichmentGrid::exact(const Vec3& x) const { return phi_of(regions_.region(x)); }
 
 PhiValue EnrichmentGrid::interpolated(const Vec3& x) const {
   // d+ is continuous in the plane: interpolated between the columns around x;

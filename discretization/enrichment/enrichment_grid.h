@@ -16,9 +16,11 @@
 // ParaView, computed on request) and tells which columns changed when the cut
 // grew: the nodes whose support reaches none of them keep their enriched weight.
 #include <array>
+#include <limits>
 #include <vector>
 
 #include "discretization/enrichment/cut_phi.h"
+#include "geometry/cut_region_index.h"
 #include "geometry/cut_surface.h"
 
 namespace kerf {
@@ -34,6 +36,8 @@ class EnrichmentGrid {
   /// there (the region of pieces [0, n) is that of [0, k) and [k, n) combined,
   /// earlier pieces winning ties as in cut_region).
   EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding, const EnrichmentGrid& before);
+  EnrichmentGrid(const EnrichmentGrid&) = delete;  // its region index views its frame
+  EnrichmentGrid& operator=(const EnrichmentGrid&) = delete;
 
   static constexpr Index max_points = 20'000'000;
 
@@ -92,6 +96,7 @@ class EnrichmentGrid {
   Index pieces_;
   double spacing_;
   CutFrame frame_;
+  CutRegionIndex regions_;      // of pieces [0, pieces_) in frame_
   int dim_;
   Vec3 anchor_;                 // the cut's first vertex: lattice coordinates start here
   std::array<Vec3, 3> axes_;    // lattice axes; the last used one is the normal
