@@ -39,7 +39,7 @@ void CutFollower::update_rows(CutsInShapeFunctions& body, RunParts& run, SolverS
   const double start = now_seconds();
   const CutUpdate update = body.update_for_cuts(state.t);
   const double updated = now_seconds();
-  run.mechanics->discretization_changed();
+  run.mechanics->discretization_changed(update.changed_nodes);
   run.stepper->discretization_changed(state);
   record_growth(report, start, updated, now_seconds());
   report.cuts.updated_nodes += update.nodes;

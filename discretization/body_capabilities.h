@@ -64,6 +64,7 @@ class WeakConstraints {
 /// What a growing cut changed in a body.
 struct CutUpdate {
   Index nodes = 0;   // nodes whose enriched weight changed
+  std::vector<Index> changed_nodes;  // those nodes: a point whose support holds none keeps its shape functions
   Index points = 0;  // integration points whose shape functions were recomputed
 };
 

@@ -95,9 +95,13 @@ ContactTerm::Sphere ContactTerm::place(const ContactSphere& c, const SurfaceSamp
   return s;
 }
 
-void ContactTerm::refresh_interpolations(const DiscreteBody& body) {
+void ContactTerm::refresh_interpolations(const DiscreteBody& body, std::span<const Index> changed_nodes) {
+  std::vector<char> changed(body.node_count(), 0);
+  for (Index I : changed_nodes) changed[I] = 1;
   for (Sphere& s : spheres_)
     for (SurfacePoint& p : s.points) {
+      if (std::none_of(p.interpolation.nodes.begin(), p.interpolation.nodes.end(), [&](Index I) { return changed[I]; }))
+        continue;
       std::optional<PointInterpolation> now = body.interpolation_at(p.position);
       KERF_CHECK(now && now->nodes == p.interpolation.nodes, "internal: the contact point [", p.position.transpose(),
                  "] is no longer covered by the nodes it was (a cut may only change weights in place)");

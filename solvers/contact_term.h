@@ -86,9 +86,10 @@ class ContactTerm {
   void restore(const AugmentationState& state);
   /// The state of sphere i at u.
   ContactReading reading(Index sphere, const Vector& u) const;
-  /// The points' interpolation taken again from the body, whose shape
-  /// functions a growing cut changed in place (same points, same multipliers).
-  void refresh_interpolations(const DiscreteBody& body);
+  /// The interpolation of the points whose nodes include one of
+  /// `changed_nodes` taken again from the body, whose shape functions a
+  /// growing cut changed in place (same points, same multipliers).
+  void refresh_interpolations(const DiscreteBody& body, std::span<const Index> changed_nodes);
 
   /// The spheres' masses into their dofs of `lumped` (kg per dof).
   void fill_lumped_mass(Vector& lumped) const;

@@ -5,6 +5,7 @@
 // implicit system see this, never the body alone, so the body knows nothing
 // of contact and contact nothing of the method.
 #include <memory>
+#include <span>
 
 #include "core/rank_share.h"
 #include "core/run_report.h"
@@ -29,9 +30,10 @@ class MechanicalSystem {
   const RankShare& ranks() const { return ranks_; }
   /// The body's tangents from now on: definite (projected) or exact (DiscreteBody::use_definite_tangent).
   void use_definite_tangent(bool definite) { body_.use_definite_tangent(definite); }
-  /// The body's shape functions changed in place (a growing cut): the terms read them again.
-  void discretization_changed() {
-    if (contact_) contact_->refresh_interpolations(body_);
+  /// The body's shape functions changed in place (a growing cut) at the
+  /// points whose support holds one of `changed_nodes`: the terms read those again.
+  void discretization_changed(std::span<const Index> changed_nodes) {
+    if (contact_) contact_->refresh_interpolations(body_, changed_nodes);
   }
   /// An implicit time step starts from u (all dofs): DiscreteBody::begin_time_step.
   void begin_time_step(const Vector& u) {

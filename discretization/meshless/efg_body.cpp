@@ -162,6 +162,7 @@ CutUpdate EfgBody::update_for_cuts(double t) {
   const std::vector<Index> changed = domain_.update_shapes_for_cuts(t);  // the same on every rank
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
+  update.changed_nodes = changed;
   const std::vector<Index> rows = points_.points_holding(changed);
   std::array<double, 2> counts{
       static_cast<double>(

@@ -202,6 +202,7 @@ CutUpdate NodalBody::update_for_cuts(double t) {
   const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows, &resized);
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
+  update.changed_nodes = changed;
   update.points = static_cast<Index>(rows.size());
   for (Index I : resized) weigh_node(I);  // the cut moved volume (and mass) across it
   if (domain_.cut_cell_points_grow()) {  // the cells at the cut changed: their points, and the nodes' weights
