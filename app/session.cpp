@@ -310,6 +310,17 @@ nlohmann::ordered_json Session::probes() {
   return run_->guarded([&] { return run_->observer->probes_now(run_->parts, run_->state); });
 }
 
+Vec3 Session::contact_force(Index sphere) {
+  const ContactTerm* contact = run_->parts.mechanics->contact();
+  const Index spheres = contact ? contact->sphere_count() : 0;
+  KERF_CHECK(sphere >= 0 && sphere < spheres, "contact_force: sphere ", sphere, " is not in the scene's 'contact' ",
+             "list, which has ", spheres, " spheres");
+  return run_->guarded([&] {
+    run_->parts.stepper->complete_state(run_->state);
+    return contact->reading(sphere, run_->state.u).force;
+  });
+}
+
 RunOutcome Session::finish() {
   KERF_CHECK(!run_->finished, "this session is finished already");
   return run_->guarded([&] { return run_->finish(); });

@@ -65,6 +65,10 @@ class Session {
   Index node_count() const;
   /// The scene's probes now, as summary.json's `probes` holds them.
   nlohmann::ordered_json probes();
+  /// The force (N) contact sphere `sphere` (its index in the scene's
+  /// `contact`) exerts on the body now: what a haptic device renders. Cheaper
+  /// than probes(): one sum over the sphere's contact points.
+  Vec3 contact_force(Index sphere);
 
   /// Ends the run where it stands: the last state written if it was not,
   /// summary.json with status "ok" and the run's figures. A session finishes once.

@@ -166,5 +166,16 @@ TEST(Session, RefusesAStepPastItsEndNamingWhatSetsIt) {
   testing::expect_mentions(testing::error_message([&] { session.finish(); }), {"finished already"});
 }
 
+TEST(Session, GivesTheContactForceItsProbeGives) {
+  Session session(quiet_scene("scenes/indentation.yaml", {"solve.duration=0.01"}, "contact_force"), quiet());
+  for (int i = 0; i < 12; ++i) session.step();
+  const Vec3 force = session.contact_force(0);
+  const json probe = session.probes()["push"]["contact_force"];
+  EXPECT_LT(force.z(), 0.0);  // pressing by now
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(force[k], probe[k].get<double>()) << k;
+  testing::expect_mentions(testing::error_message([&] { session.contact_force(1); }),
+                           {"sphere 1", "'contact'", "1 spheres"});
+}
+
 }  // namespace
 }  // namespace kerf
