@@ -37,5 +37,6 @@ void crack3d_study(const StudyOptions& options);
 void organ_study(const StudyOptions& options);
 void solvers_study(const StudyOptions& options);
 void scaling_study(const StudyOptions& options);
+void haptic_study(const StudyOptions& options);
 
 }  // namespace kerf

@@ -6,7 +6,7 @@
 namespace kerf {
 
 std::span<const StudyEntry> all_studies() {
-  static const std::array<StudyEntry, 10> entries{{
+  static const std::array<StudyEntry, 11> entries{{
       {"hertz", "indentation of a block by a rigid sphere against Hertz's solution, every method", hertz_study},
       {"timing", "time of a step of each method and integrator, phase by phase, beside the paper's", timing_study},
       {"stability", "critical steps, undamped energy, zero-energy modes, a 200-piece zigzag cut, locking",
@@ -23,6 +23,8 @@ std::span<const StudyEntry> all_studies() {
        solvers_study},
       {"scaling", "the same FEM scene on 1, 2 and 3 MPI ranks, phase by phase (strong and weak scaling)",
        scaling_study},
+      {"haptic", "a haptic loop at 1 kHz: blade fed every step, sphere pressed, each method's iteration beside its floor",
+       haptic_study},
   }};
   return entries;
 }
