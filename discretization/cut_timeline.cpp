@@ -24,15 +24,10 @@ void CutTimeline::extend(Index c, std::span<const Vec3> vertices, double time) {
   KERF_CHECK(cut.live, key, ".live: the cut is not declared live, so the run was set up for its scene's vertices "
              "alone; expected live: true in the scene to feed it at run time");
   KERF_CHECK(!vertices.empty(), key, ": no vertex to extend the cut by");
-  KERF_CHECK(cut.times.empty() || time >= cut.times.back(), key, ": a vertex at t = ", time,
-             " s comes before the cut's last vertex (t = ", cut.times.back(), " s); expected times that never decrease");
-  std::vector<Vec3> all = cut.vertices;
-  all.insert(all.end(), vertices.begin(), vertices.end());
-  std::vector<double> times = cut.times;
-  times.resize(all.size(), time);
-  surfaces_[c] = cut_surface(dimension_, all, times, cut.where.describe() + " (" + key + ", fed at run time)");
-  cut.vertices = std::move(all);
-  cut.times = std::move(times);
+  surfaces_[c].where = cut.where.describe() + " (" + key + ", fed at run time)";
+  extend_cut_surface(surfaces_[c], vertices, time);
+  cut.vertices.insert(cut.vertices.end(), vertices.begin(), vertices.end());
+  cut.times.resize(cut.vertices.size(), time);
 }
 
 Index CutTimeline::pieces_at(double t) const {

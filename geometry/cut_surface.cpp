@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <sstream>
 
 #include "core/check.h"
@@ -58,36 +59,40 @@ Index CutSurface::pieces_at(double t) const {
   return static_cast<Index>(std::upper_bound(appears.begin(), appears.end(), t) - appears.begin());
 }
 
-CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> times, std::string where) {
-  CutSurface cut;
-  cut.dimension = dim;
-  cut.where = std::move(where);
-  const Index corners = dim == 2 ? 2 : 3, n = static_cast<Index>(vertices.size());
-  KERF_CHECK(static_cast<Index>(times.size()) == n, cut.where, ": expected one time per vertex (", n, "), found ",
-             times.size());
-  if (dim == 2)
-    for (Vec3& v : vertices) v.z() = 0.0;
-  for (Index k = 0; k < std::min(n, corners); ++k)
-    cut.extent = std::max(cut.extent, (vertices[k] - vertices.front()).norm());
+namespace {
+
+/// The pieces `vertices` (appended to the cut's) add, each checked for a zero size.
+void append_pieces(CutSurface& cut, std::span<const Vec3> vertices, std::span<const double> times) {
+  const int dim = cut.dimension;
+  const Index corners = dim == 2 ? 2 : 3;
+  for (const Vec3& v : vertices) cut.vertices.push_back(dim == 2 ? Vec3(v.x(), v.y(), 0.0) : v);
+  cut.times.insert(cut.times.end(), times.begin(), times.end());
+  const std::vector<Vec3>& all = cut.vertices;
+  const Index n = static_cast<Index>(all.size());
+  cut.extent = 0.0;
+  for (Index k = 0; k < std::min(n, corners); ++k) cut.extent = std::max(cut.extent, (all[k] - all.front()).norm());
   const double extent = cut.extent;
-  for (Index k = 0; k + corners <= n; ++k) {
-    CutPiece p = make_piece(dim, vertices, k);
+  for (Index k = cut.piece_count(); k + corners <= n; ++k) {
+    CutPiece p = make_piece(dim, all, k);
     if (dim == 2)
       KERF_CHECK(p.size > 1e-12 * extent, cut.where, ": the polyline's segment from vertex ", k, " ",
-                 vector_text(vertices[k], dim), " to vertex ", k + 1, " ", vector_text(vertices[k + 1], dim),
+                 vector_text(all[k], dim), " to vertex ", k + 1, " ", vector_text(all[k + 1], dim),
                  " has zero length; expected distinct consecutive vertices");
     else
       KERF_CHECK(p.size > 1e-12 * extent * extent, cut.where, ": the strip's triangle of vertices ", k, ", ", k + 1,
-                 ", ", k + 2, " ", vector_text(vertices[k], 3), " ", vector_text(vertices[k + 1], 3), " ",
-                 vector_text(vertices[k + 2], 3), " is collapsed (area ", p.size,
+                 ", ", k + 2, " ", vector_text(all[k], 3), " ", vector_text(all[k + 1], 3), " ",
+                 vector_text(all[k + 2], 3), " is collapsed (area ", p.size,
                  " m^2); expected three vertices not on one line");
     cut.pieces.push_back(p);
-    cut.appears.push_back(times[k + corners - 1]);
+    cut.appears.push_back(cut.times[k + corners - 1]);
   }
-  cut.vertices = std::move(vertices);
-  cut.times = std::move(times);
-  // Every stage of a growing cut must be readable in its own common frame.
-  for (Index count = 1; count <= cut.piece_count(); ++count) {
+}
+
+/// Every stage of a growing cut from `first_count` pieces on must be readable in its own common frame.
+void refuse_folds(const CutSurface& cut, Index first_count) {
+  const int dim = cut.dimension;
+  const Index corners = dim == 2 ? 2 : 3;
+  for (Index count = std::max<Index>(first_count, 1); count <= cut.piece_count(); ++count) {
     if (count < cut.piece_count() && cut.appears[count] == cut.appears[count - 1]) continue;
     const CutFrame frame = common_frame(cut, 0, count);
     for (Index k = 0; k < count; ++k) {
@@ -103,7 +108,36 @@ CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> 
       throw Error(why.str());
     }
   }
+}
+
+}  // namespace
+
+CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> times, std::string where) {
+  CutSurface cut;
+  cut.dimension = dim;
+  cut.where = std::move(where);
+  KERF_CHECK(times.size() == vertices.size(), cut.where, ": expected one time per vertex (", vertices.size(),
+             "), found ", times.size());
+  append_pieces(cut, vertices, times);
+  refuse_folds(cut, 1);
   return cut;
+}
+
+void extend_cut_surface(CutSurface& cut, std::span<const Vec3> vertices, double time) {
+  KERF_CHECK(cut.times.empty() || time >= cut.times.back(), cut.where, ": a vertex at t = ", time,
+             " s comes before the cut's last vertex (t = ", cut.times.back(), " s); expected times that never decrease");
+  const std::size_t vertex_count = cut.vertices.size();
+  const Index piece_count = cut.piece_count();
+  const double extent = cut.extent;
+  try {
+    append_pieces(cut, vertices, std::vector<double>(vertices.size(), time));
+    refuse_folds(cut, piece_count + 1);  // the earlier stages are as they were checked
+  } catch (...) {
+    cut.vertices.resize(vertex_count), cut.times.resize(vertex_count);
+    cut.pieces.resize(piece_count), cut.appears.resize(piece_count);
+    cut.extent = extent;
+    throw;
+  }
 }
 
 CutFrame common_frame(const CutSurface& cut, Index first, Index last) {

@@ -8,6 +8,7 @@
 // the signed normal distance s, and whether a straight line crosses the cut.
 // Exact predicates (sides, inside a projected triangle, crossings) are CGAL's.
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,11 @@ struct CutSurface {
 /// stage of its growth), naming `where` and the offending vertex or piece.
 /// Fewer vertices than a piece has corners make no piece yet (a cut fed at run time).
 CutSurface cut_surface(int dimension, std::vector<Vec3> vertices, std::vector<double> times, std::string where);
+/// The same cut grown by `vertices` at `time` (no earlier than its last
+/// vertex's), as a blade fed at run time gives them: only the stages the new
+/// pieces make are checked, so a growth costs O(pieces), not O(pieces^2).
+/// Throws, the cut left as it was, as cut_surface would.
+void extend_cut_surface(CutSurface& cut, std::span<const Vec3> vertices, double time);
 
 /// The common frame of pieces [first, last): origin at the size-weighted
 /// centre, `normal` the size-weighted mean normal (2D: at the size-weighted

@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "geometry/cut_surface.h"
+#include "support/test_support.h"
 
 namespace kerf {
 namespace {
@@ -104,6 +105,42 @@ TEST(CutSurface, CrossingsAndDistances) {
   EXPECT_FALSE(segment_crosses_cut(c, 0, 2, Vec3(0.5, 0.5, 0), Vec3(0.5, 0.5, 1)));  // touches at an end
   EXPECT_NEAR(distance_to_cut(c, 0, 2, Vec3(0.5, 0.5, 0.3)), 0.3, 1e-15);
   EXPECT_NEAR(distance_to_cut(c, 0, 2, Vec3(2, 0.5, 0)), 1.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace kerf
+
+namespace kerf {
+namespace {
+
+TEST(CutSurface, GrownVertexByVertexIsTheCutGivenWholeAndARefusedPieceLeavesItAsItWas) {
+  std::vector<Vec3> v;
+  std::vector<double> t;
+  for (int k = 0; k < 30; ++k) {
+    v.push_back(Vec3(0.001 * k, 0.05 + 1e-4 * (k % 3), 0.11)), t.push_back(0.001 * k);
+    v.push_back(Vec3(0.001 * k, 0.05, 0.03)), t.push_back(0.001 * k);
+  }
+  const CutSurface whole = cut_surface(3, v, t, "whole");
+  CutSurface grown = cut_surface(3, {}, {}, "grown");
+  for (int k = 0; k < 30; ++k) extend_cut_surface(grown, std::span<const Vec3>(v).subspan(2 * k, 2), t[2 * k]);
+  ASSERT_EQ(grown.piece_count(), whole.piece_count());
+  EXPECT_EQ(grown.extent, whole.extent);
+  EXPECT_EQ(grown.appears, whole.appears);
+  for (Index k = 0; k < whole.piece_count(); ++k) {
+    EXPECT_EQ(grown.pieces[k].corner, whole.pieces[k].corner) << k;
+    EXPECT_EQ(grown.pieces[k].normal, whole.pieces[k].normal) << k;
+  }
+  // A blade turned back over the strip folds it: refused, the cut as it was.
+  const std::vector<Vec3> back{Vec3(0.01, 0.05, 0.12), Vec3(0.01, 0.06, 0.03)};
+  const std::string error = testing::error_message([&] { extend_cut_surface(grown, back, 0.05); });
+  EXPECT_NE(error.find("folds"), std::string::npos) << error;
+  EXPECT_EQ(grown.piece_count(), whole.piece_count());
+  EXPECT_EQ(grown.vertices, whole.vertices);
+  EXPECT_EQ(grown.times, whole.times);
+  EXPECT_EQ(grown.appears, whole.appears);
+  // And a vertex earlier than the last one is refused.
+  const std::vector<Vec3> early{Vec3(0.04, 0.05, 0.11)};
+  EXPECT_NE(testing::error_message([&] { extend_cut_surface(grown, early, 0.0); }).find("before"), std::string::npos);
 }
 
 }  // namespace
