@@ -75,7 +75,7 @@ std::function<void(int)> summary_saying_interrupted(const std::string& path, jso
   };
 }
 
-/// The body at the end of the run, as ParaView gets it.
+/// The body as ParaView gets it (at the end of the run, or now).
 std::shared_ptr<const BodySnapshot> final_body(const RunParts& run, const SolverState& state) {
   auto body = std::make_shared<BodySnapshot>();
   Vector body_u;
@@ -318,6 +318,13 @@ Vec3 Session::contact_force(Index sphere) {
   return run_->guarded([&] {
     run_->parts.stepper->complete_state(run_->state);
     return contact->reading(sphere, run_->state.u).force;
+  });
+}
+
+BodySnapshot Session::snapshot() {
+  return run_->guarded([&] {
+    run_->parts.stepper->complete_state(run_->state);
+    return *final_body(run_->parts, run_->state);
   });
 }
 

@@ -19,6 +19,7 @@
 
 #include "app/run_scene.h"
 #include "core/types.h"
+#include "discretization/body_snapshot.h"
 
 namespace kerf {
 
@@ -69,6 +70,10 @@ class Session {
   /// `contact`) exerts on the body now: what a haptic device renders. Cheaper
   /// than probes(): one sum over the sphere's contact points.
   Vec3 contact_force(Index sphere);
+  /// The body now as ParaView gets it (reference points, cells, displacement
+  /// and stress fields): what a viewer draws. A FEM body split by a cut has
+  /// new cells and nodes after the step that split it.
+  BodySnapshot snapshot();
 
   /// Ends the run where it stands: the last state written if it was not,
   /// summary.json with status "ok" and the run's figures. A session finishes once.

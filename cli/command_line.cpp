@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <iostream>
+
+#include <unistd.h>
 
 #include "app/resource_estimate.h"
 #include "app/run_scene.h"
@@ -26,6 +31,7 @@ constexpr const char* usage =
     "  kerf check SCENE.yaml [--set KEY=VALUE]...   validate only, print the resolved scene and its estimate\n"
     "  (--force: run even when the estimated memory or output exceeds what the machine has)\n"
     "  kerf study [NAME] [--quick] [--out DIR] [--quiet]   the studies; no NAME lists them\n"
+    "  kerf view SCENE.yaml [--set KEY=VALUE]... [--script FILE]   the scene in a window, the mouse as its blade\n"
     "  kerf --version\n";
 
 struct Arguments {
@@ -99,9 +105,25 @@ int first_refusing_rank(const RankShare& ranks, bool refused) {
   return -1;
 }
 
+/// `kerf view`: the arguments handed to kerf-view beside this program (VTK's
+/// rendering is loaded by it alone). Returns only when it cannot be started.
+int run_viewer(const std::vector<std::string>& args) {
+  const std::filesystem::path viewer = std::filesystem::read_symlink("/proc/self/exe").parent_path() / "kerf-view";
+  std::vector<std::string> words{viewer.string()};
+  words.insert(words.end(), args.begin() + 1, args.end());
+  std::vector<char*> argv;
+  for (std::string& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  execv(viewer.c_str(), argv.data());
+  std::cerr << "kerf: error: kerf view needs the viewer program " << viewer.string() << " (built and installed with "
+            << "kerf): " << std::strerror(errno) << "\n";
+  return 1;
+}
+
 }  // namespace
 
 int run_command_line(const std::vector<std::string>& args) {
+  if (!args.empty() && args[0] == "view") return run_viewer(args);
   Arguments a;
   Scene scene;
   RankShare ranks;

@@ -15,6 +15,7 @@ foreach(library ${kerf_exported_libraries})
 endforeach()
 
 set(kerf_header_dir ${CMAKE_INSTALL_INCLUDEDIR}/kerf)
+install(TARGETS kerf-view RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 install(TARGETS kerf ${kerf_exported_libraries} EXPORT kerfTargets
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR}
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
