@@ -42,7 +42,8 @@ Eigen::Vector2d closest_on_edges(const Eigen::Vector2d& q, const ProjectedTriang
 void nearer_projected(Index k, const ProjectedTriangle& t, const Eigen::Vector2d& q, ProjectedNearest& best) {
   const Eigen::Vector2d c = closest_on_edges(q, t);
   const double distance = (q - c).norm();
-  if (distance < best.distance) best = {k, distance, c};
+  // An earlier piece wins a tie, whatever the order of the visits.
+  if (distance < best.distance || (distance == best.distance && k < best.piece)) best = {k, distance, c};
 }
 
 bool visit_projected(Index k, const ProjectedTriangle& t, const Eigen::Vector2d& q, ProjectedNearest& best) {

@@ -27,7 +27,7 @@ struct ProjectedNearest {
   double distance = std::numeric_limits<double>::infinity();
   Eigen::Vector2d nearest = Eigen::Vector2d::Zero();
 };
-/// Piece k (triangle t) into `best` if strictly nearer: an earlier piece wins a tie.
+/// Piece k (triangle t) into `best` if nearer, or as near and earlier (pieces may be visited in any order).
 void nearer_projected(Index k, const ProjectedTriangle& t, const Eigen::Vector2d& q, ProjectedNearest& best);
 /// Folds piece k into `best`, as cut_region visits pieces in order: true when it holds q (the search ends).
 bool visit_projected(Index k, const ProjectedTriangle& t, const Eigen::Vector2d& q, ProjectedNearest& best);

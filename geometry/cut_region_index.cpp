@@ -41,12 +41,17 @@ CutRegion CutRegionIndex::region(const Vec3& x) const {
     if (run.holds(q))
       for (Index k = run.first; k < run.last; ++k)
         if (projected_holds(triangles_[k - first_], q)) return region_from(*cut_, *frame_, x, q, {k, 0.0, q});
-  // None holds it: the nearest, an earlier piece winning a tie. Runs in order, so a run that cannot come
-  // strictly nearer is passed (its box distance rounded the other way by far less than the margin).
+  // None holds it: the nearest, an earlier piece winning a tie. The runs nearest first, so that the
+  // nearest piece is found early and the runs whose box lies farther are passed (their box distance may be
+  // rounded the other way by far less than the margin).
+  std::vector<std::pair<double, const Run*>> near;
+  near.reserve(runs_.size());
+  for (const Run& run : runs_) near.emplace_back(run.distance(q), &run);
+  std::sort(near.begin(), near.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   ProjectedNearest best;
-  for (const Run& run : runs_) {
-    if (run.distance(q) > best.distance * (1.0 + 1e-12)) continue;
-    for (Index k = run.first; k < run.last; ++k) nearer_projected(k, triangles_[k - first_], q, best);
+  for (const auto& [distance, run] : near) {
+    if (distance > best.distance * (1.0 + 1e-12)) break;
+    for (Index k = run->first; k < run->last; ++k) nearer_projected(k, triangles_[k - first_], q, best);
   }
   return region_from(*cut_, *frame_, x, q, best);
 }
