@@ -3,6 +3,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <optional>
+#include <sstream>
 #include <utility>
 
 #include "app/cut_follower.h"
@@ -105,6 +106,25 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, const MpiContext& mp
   parallel.owned_rows = share.owned_end - share.owned_begin;
   parallel.touched_rows = share.partial ? static_cast<Index>(share.touched.size()) : run.mechanics->dof_count();
   return run;
+}
+
+/// The box around the pieces that vertices `first_new` on of `v` add to a cut (corners a piece: 2 for a
+/// polyline, 3 for a strip); empty (min > max) when they add none.
+Box box_of_new_pieces(const std::vector<Vec3>& v, std::size_t first_new, std::size_t corners) {
+  Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+  if (v.size() < corners) return box;
+  for (std::size_t k = first_new + 1 >= corners ? first_new + 1 - corners : 0; k < v.size(); ++k)
+    box.min = box.min.cwiseMin(v[k]), box.max = box.max.cwiseMax(v[k]);
+  return box;
+}
+
+/// The box around a body's nodes, a millionth of its size wider.
+Box box_of_body(const DiscreteBody& body) {
+  Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
+  for (Index n = 0; n < body.node_count(); ++n)
+    box.min = box.min.cwiseMin(body.node_position(n)), box.max = box.max.cwiseMax(body.node_position(n));
+  const Vec3 margin = Vec3::Constant(1e-6 * (box.max - box.min).norm());
+  return {box.min - margin, box.max + margin};
 }
 
 /// Every rank's memory marks, in rank order (collective).
@@ -280,7 +300,35 @@ void Session::extend_cut(Index cut, std::span<const Vec3> vertices) {
   // A refused piece is the caller's error, not the run's: the cut and the summary stay as they were.
   KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
              ": its cuts take no more vertices");
+  KERF_CHECK(cut >= 0 && cut < run_->timeline->cut_count(), "cut ", cut, " does not exist: the scene has ",
+             run_->timeline->cut_count(), " cut(s)");
+  refuse_a_blade_outside(cut, vertices);
   run_->timeline->extend(cut, vertices, run_->state.t);
+}
+
+void Session::refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) const {
+  // New pieces that lie wholly outside the body's box cut nothing: a blade moved off the body. (Inside the
+  // box but outside a curved body is not refused: only what is certainly outside is.)
+  const CutSurface& now = run_->timeline->surface(cut);
+  std::vector<Vec3> all = now.vertices;
+  all.insert(all.end(), vertices.begin(), vertices.end());
+  const int dim = now.dimension;
+  const Box pieces = box_of_new_pieces(all, now.vertices.size(), dim == 2 ? 2 : 3);
+  if ((pieces.min.array() > pieces.max.array()).any()) return;  // no piece yet: the blade's first position
+  Box body = box_of_body(*run_->parts.body);
+  if (run_->options.mpi.ranks.distributed())  // a body divided among the ranks: the box around their pieces
+    for (const std::vector<double>& r : values_of_every_rank({body.min.x(), body.min.y(), body.min.z(), body.max.x(),
+                                                              body.max.y(), body.max.z()},
+                                                             run_->options.mpi.ranks))
+      body.min = body.min.cwiseMin(Vec3(r[0], r[1], r[2])), body.max = body.max.cwiseMax(Vec3(r[3], r[4], r[5]));
+  bool apart = false;
+  for (int a = 0; a < dim; ++a) apart |= pieces.max[a] < body.min[a] || pieces.min[a] > body.max[a];
+  std::ostringstream where;
+  for (const Vec3& v : vertices) where << " [" << v.transpose() << "]";
+  KERF_CHECK(!apart, now.where, ": the blade's new position (", where.str().substr(1), ") leaves the cut's new ",
+             "pieces wholly outside the body (their box [", pieces.min.transpose(), "] to [", pieces.max.transpose(),
+             "] misses the body's, [", body.min.transpose(), "] to [", body.max.transpose(), "]); expected a position ",
+             "that cuts into the body. The cut is kept as it was");
 }
 
 bool Session::done() const { return run_->taken >= run_->parts.stepper->step_count(); }

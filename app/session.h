@@ -45,7 +45,8 @@ class Session {
   /// the body up to the pieces they complete: the same as a scene giving
   /// these vertices a time within that step. A cut declared with no vertices
   /// (`strip: []`) is fed only this way. Throws, the cut left as it was,
-  /// when a new piece is degenerate or folds the cut.
+  /// when a new piece is degenerate or folds the cut, or when the new pieces
+  /// lie wholly outside the body (a blade moved off it).
   void extend_cut(Index cut, std::span<const Vec3> vertices);
   /// Every step the scene asks for taken (solve.duration / solve.dt; static: solve.load_steps).
   bool done() const;
@@ -80,6 +81,8 @@ class Session {
   RunOutcome finish();
 
  private:
+  /// Throws when the pieces `vertices` add to cut `cut` lie wholly outside the body (collective).
+  void refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) const;
   struct Run;
   std::unique_ptr<Run> run_;
 };

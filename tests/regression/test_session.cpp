@@ -116,7 +116,7 @@ TEST(Session, ACutFedAsTheRunGoesGivesTheBatchRunsAnswerToTheLastDigit) {
   }
 }
 
-TEST(Session, RefusesAPieceThatFoldsTheCutAndKeepsTheCutAsItWas) {
+TEST(Session, RefusesAPieceThatFoldsTheCutOrMissesTheBodyAndKeepsTheCutAsItWas) {
   Scene scene = quiet_scene("scenes/organ_cut.yaml", {"solve.duration=0.01", "cuts.0.strip=[]", "cuts.0.times=[]"},
                             "fold");
   Session session(scene, quiet());
@@ -135,6 +135,16 @@ TEST(Session, RefusesAPieceThatFoldsTheCutAndKeepsTheCutAsItWas) {
   session.extend_cut(0, onward);  // the cut as it was takes the next pair
   while (!session.done()) session.step();
   EXPECT_EQ(session.finish().summary["status"], "ok");
+  // A blade held off the organ (a hand overshooting): its pieces would cut nothing.
+  Session off_body(scene, quiet());
+  const std::vector<Vec3> above{{0.3, 0.2, 0.25}, {0.3, 0.2, 0.22}}, further{{0.32, 0.2, 0.25}, {0.32, 0.2, 0.22}};
+  off_body.extend_cut(0, above);  // where the blade starts: no piece yet
+  testing::expect_mentions(testing::error_message([&] { off_body.extend_cut(0, further); }),
+                           {"cuts.0", "outside the body", "[0.32  0.2 0.25]", "kept as it was"});
+  const std::vector<Vec3> into{{-0.03, 0, 0.02}, {-0.03, 0, -0.004}};
+  off_body.extend_cut(0, into);  // from there into the organ: kept
+  off_body.step();
+  EXPECT_EQ(off_body.finish().summary["status"], "ok");
 }
 
 TEST(Session, EndedEarlyLeavesItsResultsWhereItStopped) {
