@@ -158,6 +158,13 @@ def test_a_cut_fed_from_python_as_the_run_goes_gives_the_scripted_runs_answer(tm
         assert session.probes == scripted["probes"]
     with pytest.raises(kerf.Error, match="cuts.0.live"):
         kerf.Session(CUTTING, SHORT_CUT, out=str(tmp_path / "not_live")).extend_cut(0, [[0.0, 0.0]])
+    # A blade moved off the plate and on: the piece off it is refused, naming why, and the cut goes on.
+    off = [*SHORT_CUT, "cuts.0.polyline=[[1.0, 1.0]]", "cuts.0.times=[0]", "cuts.0.live=true"]
+    with kerf.Session(CUTTING, off, out=str(tmp_path / "off")) as session:
+        with pytest.raises(kerf.Error, match="outside the body"):
+            session.extend_cut(0, [[1.1, 1.0]])
+        session.extend_cut(0, [[-0.0195, 0.0005]])
+        session.run()
 
 
 def test_ctrl_c_stops_a_sessions_steps_and_python_keeps_its_own_between_them(tmp_path):
