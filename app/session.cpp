@@ -331,6 +331,27 @@ void Session::refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) 
              "that cuts into the body. The cut is kept as it was");
 }
 
+ContactTerm& Session::sphere_in_hand(Index sphere, const char* what) {
+  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
+             ": its spheres take no more moves");
+  KERF_CHECK(run_->scene.solve.analysis == Analysis::dynamic, run_->scene.locate("solve.analysis").describe(), ": ",
+             what, " moves a sphere between time steps; expected a dynamic run");
+  ContactTerm* contact = run_->parts.mechanics->contact();
+  const Index spheres = contact ? contact->sphere_count() : 0;
+  KERF_CHECK(sphere >= 0 && sphere < spheres, what, ": sphere ", sphere, " is not in the scene's 'contact' list, ",
+             "which has ", spheres, " spheres");
+  return *contact;
+}
+
+void Session::move_sphere(Index sphere, const Vec3& displacement) {
+  sphere_in_hand(sphere, "move_sphere").move_sphere(sphere, displacement);  // refused: the sphere as it was
+  run_->guarded([&] { run_->parts.stepper->prescribed_values_changed(run_->state); });
+}
+
+void Session::push_sphere(Index sphere, const Vec3& force) {
+  sphere_in_hand(sphere, "push_sphere").push_sphere(sphere, force);  // read from the next step's loads on
+}
+
 bool Session::done() const { return run_->taken >= run_->parts.stepper->step_count(); }
 int Session::steps_taken() const { return run_->taken; }
 bool Session::failed() const { return run_->failed; }

@@ -23,6 +23,8 @@
 
 namespace kerf {
 
+class ContactTerm;
+
 class Session {
  public:
   /// Opens a run of `scene`: refuses what it cannot run or fit (before any
@@ -48,6 +50,14 @@ class Session {
   /// when a new piece is degenerate or folds the cut, or when the new pieces
   /// lie wholly outside the body (a blade moved off it).
   void extend_cut(Index cut, std::span<const Vec3> vertices);
+  /// A hand on contact sphere `sphere` (its index in the scene's `contact`;
+  /// dynamic runs), from the next step on: a displacement-driven sphere's
+  /// centre moved to `displacement` (m) from its scene position (a haptic
+  /// device's tool), a force-driven one pushed with `force` (N). Refused, the
+  /// sphere as it was, where it would leave the surface sampled for it along
+  /// its scene path (contact_term.h).
+  void move_sphere(Index sphere, const Vec3& displacement);
+  void push_sphere(Index sphere, const Vec3& force);
   /// Every step the scene asks for taken (solve.duration / solve.dt; static: solve.load_steps).
   bool done() const;
   int steps_taken() const;
@@ -83,6 +93,8 @@ class Session {
  private:
   /// Throws when the pieces `vertices` add to cut `cut` lie wholly outside the body (collective).
   void refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) const;
+  /// The contact term, after checking that the session can take a hand on sphere `sphere` (`what`: the call).
+  ContactTerm& sphere_in_hand(Index sphere, const char* what);
   struct Run;
   std::unique_ptr<Run> run_;
 };

@@ -27,6 +27,12 @@ namespace py = pybind11;
 namespace kerf {
 namespace {
 
+/// A point or vector from Python: 2 (2D) or 3 numbers (SI units).
+Vec3 point_of(const std::vector<double>& v, const char* what) {
+  KERF_CHECK(v.size() == 2 || v.size() == 3, what, " has ", v.size(), " coordinates; expected 2 (2D) or 3");
+  return Vec3(v[0], v[1], v.size() == 3 ? v[2] : 0.0);
+}
+
 using json = nlohmann::ordered_json;
 
 /// kerf's JSON as Python objects (dicts, lists, floats), through Python's own parser.
@@ -277,16 +283,35 @@ PYBIND11_MODULE(_kerf, m) {
           "extend_cut",
           [](PythonSession& s, Index cut, const std::vector<std::vector<double>>& vertices) {
             std::vector<Vec3> points;
-            for (const std::vector<double>& v : vertices) {
-              KERF_CHECK(v.size() == 2 || v.size() == 3, "Session.extend_cut: a vertex of ", v.size(),
-                         " coordinates; expected 2 (2D) or 3 (m)");
-              points.emplace_back(v[0], v[1], v.size() == 3 ? v[2] : 0.0);
-            }
+            for (const std::vector<double>& v : vertices) points.push_back(point_of(v, "Session.extend_cut: a vertex"));
             s.session().extend_cut(cut, points);
           },
           py::arg("cut"), py::arg("vertices"),
           "Feeds a live cut (scene: live: true, or strip: []) its next vertices: a polyline's next vertex, a "
           "strip's next pair (the blade's two ends, m); their pieces appear by the end of the next step")
+      .def(
+          "move_sphere",
+          [](PythonSession& s, Index sphere, const std::vector<double>& displacement) {
+            s.session().move_sphere(sphere, point_of(displacement, "Session.move_sphere: the displacement"));
+          },
+          py::arg("sphere"), py::arg("displacement"),
+          "Moves a displacement-driven contact sphere's centre to `displacement` (m) from its scene position, "
+          "from the next step on (within the path its scene gives it)")
+      .def(
+          "push_sphere",
+          [](PythonSession& s, Index sphere, const std::vector<double>& force) {
+            s.session().push_sphere(sphere, point_of(force, "Session.push_sphere: the force"));
+          },
+          py::arg("sphere"), py::arg("force"),
+          "Pushes a force-driven contact sphere with `force` (N) from the next step on (along its scene force, "
+          "no larger)")
+      .def(
+          "contact_force",
+          [](PythonSession& s, Index sphere) {
+            const Vec3 f = s.session().contact_force(sphere);
+            return std::vector<double>{f[0], f[1], f[2]};
+          },
+          py::arg("sphere"), "The force (N) contact sphere `sphere` exerts on the body now")
       .def("finish", &PythonSession::finish,
            "Ends the run where it stands: summary.json with status 'ok'; returns the kerf.Result")
       .def_property_readonly("done", [](PythonSession& s) { return s.session().done(); })

@@ -67,6 +67,9 @@ ContactTerm::Sphere ContactTerm::place(const ContactSphere& c, const SurfaceSamp
   } else {
     travel = *c.displacement;
   }
+  s.travel = travel;
+  s.largest_force = c.force ? c.force->norm() : 0.0;
+  s.where = c.where.describe();
   const double reach = r + 2.0 * travel.norm();
   Box region;
   region.min = c.center.cwiseMin(c.center + travel) - Vec3::Constant(reach);
@@ -93,6 +96,30 @@ ContactTerm::Sphere ContactTerm::place(const ContactSphere& c, const SurfaceSamp
   // its contact springs do not shorten the critical step (omega dt <= 1).
   if (explicit_ && s.force) s.mass = std::max(s.mass, total_penalty * dt * dt);
   return s;
+}
+
+void ContactTerm::move_sphere(Index sphere, const Vec3& displacement) {
+  Sphere& s = spheres_.at(static_cast<std::size_t>(sphere));
+  KERF_CHECK(s.displacement, s.where, ": key 'force': contact ", sphere, " is driven by a force: push it with a force ",
+             "(push_sphere), or give it a displacement in the scene to move it");
+  const double off = distance_to_segment(s.center + displacement, s.center, s.center + s.travel);
+  KERF_CHECK(off <= 2.0 * s.travel.norm() * (1.0 + 1e-12), s.where, ": key 'displacement': moving the sphere by [",
+             displacement.transpose(), "] m takes it ", off, " m from its scene path (the centre to [",
+             (s.center + s.travel).transpose(), "]), past the ", 2.0 * s.travel.norm(), " m around it whose surface ",
+             "was sampled for it; expected a move within that, or a scene displacement reaching as far");
+  s.displacement = displacement;
+}
+
+void ContactTerm::push_sphere(Index sphere, const Vec3& force) {
+  Sphere& s = spheres_.at(static_cast<std::size_t>(sphere));
+  KERF_CHECK(s.force, s.where, ": key 'displacement': contact ", sphere, " is driven by a displacement: move it ",
+             "(move_sphere), or give it a force in the scene to push it");
+  const bool on_line = force.cross(s.direction).norm() <= 1e-12 * std::max(force.norm(), 1e-300);
+  KERF_CHECK(on_line && force.norm() <= s.largest_force * (1.0 + 1e-12), s.where, ": key 'force': pushing with [",
+             force.transpose(), "] N leaves the sphere's scene force line or exceeds it (", s.largest_force,
+             " N along [", s.direction.transpose(), "], which set the surface sampled for it); expected a force ",
+             "along that line, no larger");
+  s.force = force;
 }
 
 void ContactTerm::refresh_interpolations(const DiscreteBody& body, std::span<const Index> changed_nodes) {

@@ -30,6 +30,7 @@
 // rows belong to the last rank, which alone adds its mass.
 #include <array>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "core/rank_share.h"
@@ -86,6 +87,15 @@ class ContactTerm {
   void restore(const AugmentationState& state);
   /// The state of sphere i at u.
   ContactReading reading(Index sphere, const Vector& u) const;
+  /// A session's hand on a sphere (dynamic runs; the stepper is told, as
+  /// prescribed_values_changed). A displacement-driven sphere's centre moved
+  /// to `displacement` (m) from its reference position; a force-driven one
+  /// pushed with `force` (N) from now on. Refused, naming the sphere's scene
+  /// line and key, where the sphere would leave the part of the surface
+  /// sampled for it (its scene path: within twice its scene displacement of
+  /// that path; a force no larger than its scene force, on the same line).
+  void move_sphere(Index sphere, const Vec3& displacement);
+  void push_sphere(Index sphere, const Vec3& force);
   /// The interpolation of the points whose nodes include one of
   /// `changed_nodes` taken again from the body, whose shape functions a
   /// growing cut changed in place (same points, same multipliers).
@@ -104,6 +114,9 @@ class ContactTerm {
     Vec3 center = Vec3::Zero();  // reference (m)
     double radius = 0.0;         // m
     std::optional<Vec3> force, displacement;
+    Vec3 travel = Vec3::Zero();  // the scene's path (m): its points were sampled around it
+    double largest_force = 0.0;  // N: the scene's force, which set that path
+    std::string where;           // the scene line, for messages
     double mass = 0.0;  // kg
     // Force-driven: the unit force direction, the depth along it (m) and the
     // previous (depth, F^(2/3)) of the secant; the half-space depth of the force (m).

@@ -167,6 +167,19 @@ def test_a_cut_fed_from_python_as_the_run_goes_gives_the_scripted_runs_answer(tm
         session.run()
 
 
+def test_a_session_pushes_a_sphere_and_reads_its_force(tmp_path):
+    indentation = os.path.join(SOURCE, "scenes", "indentation.yaml")
+    with kerf.Session(indentation, ["solve.duration=0.02", "output.vtk=false"], out=str(tmp_path)) as session:
+        session.push_sphere(0, [0, 0, -0.005])
+        session.run()
+        assert session.contact_force(0) == session.probes["push"]["contact_force"]
+        assert session.contact_force(0)[2] < 0.0
+        with pytest.raises(kerf.Error, match="no larger"):
+            session.push_sphere(0, [0, 0, -0.05])
+        with pytest.raises(kerf.Error, match="driven by a force"):
+            session.move_sphere(0, [0, 0, -0.001])
+
+
 def test_ctrl_c_stops_a_sessions_steps_and_python_keeps_its_own_between_them(tmp_path):
     import signal
     import threading

@@ -4,7 +4,9 @@
 // where it stopped.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <fstream>
+#include <functional>
 #include <sstream>
 
 #include "app/session.h"
@@ -185,6 +187,70 @@ TEST(Session, GivesTheContactForceItsProbeGives) {
   for (int k = 0; k < 3; ++k) EXPECT_EQ(force[k], probe[k].get<double>()) << k;
   testing::expect_mentions(testing::error_message([&] { session.contact_force(1); }),
                            {"sphere 1", "'contact'", "1 spheres"});
+}
+
+}  // namespace
+}  // namespace kerf
+
+namespace kerf {
+namespace {
+
+/// The probes of `scene` run by a session whose hand sets sphere 0 before the first step (`hand`), then steps to the end.
+json probes_with_a_hand(const Scene& scene, const std::function<void(Session&)>& hand) {
+  Session session(scene, quiet());
+  hand(session);
+  while (!session.done()) session.step();
+  return session.finish().summary["probes"];
+}
+
+// A sphere moved by a session where its scene would have put it: the same
+// run to the last digit (a haptic device's tool moved between steps).
+TEST(Session, ASphereMovedByTheSessionGivesTheRunItsSceneWouldGive) {
+  auto scene = [&](const std::string& displacement, const std::string& dir) {
+    return quiet_scene("scenes/indentation.yaml", {"solve.duration=0.02", "output.vtk=false", "contact.0.force=null",
+                                                   "contact.0.displacement=" + displacement}, dir);
+  };
+  const json batch = run_scene(scene("[0, 0, -0.002]", "move_batch"), quiet()).summary["probes"];
+  const json live = probes_with_a_hand(scene("[0, 0, -0.004]", "move_live"),
+                                       [](Session& s) { s.move_sphere(0, Vec3(0, 0, -0.002)); });
+  EXPECT_EQ(live.dump(), batch.dump());
+  EXPECT_LT(live["push"]["contact_force"][2].get<double>(), 0.0);  // it presses
+}
+
+// A sphere pushed by a session with half its scene's force settles where the
+// body pushes back as hard, as deep as Hertz says (depth ~ F^(2/3)).
+TEST(Session, ASpherePushedByTheSessionSettlesUnderThatForce) {
+  const json full = run_scene(quiet_scene("scenes/indentation.yaml", {"output.vtk=false"}, "push_full"), quiet())
+                        .summary["probes"];
+  const json half = probes_with_a_hand(quiet_scene("scenes/indentation.yaml", {"output.vtk=false"}, "push_half"),
+                                       [](Session& s) { s.push_sphere(0, Vec3(0, 0, -0.005)); });
+  EXPECT_NEAR(half["push"]["contact_force"][2].get<double>(), -0.005, 0.03 * 0.005);
+  const double ratio = half["indent"]["indentation"].get<double>() / full["indent"]["indentation"].get<double>();
+  EXPECT_NEAR(ratio, std::pow(0.5, 2.0 / 3.0), 0.05) << ratio;
+}
+
+TEST(Session, RefusesAHandThatTakesASphereOffTheSurfaceSampledForIt) {
+  Session pushed(quiet_scene("scenes/indentation.yaml", {"solve.duration=0.002"}, "hand_push"), quiet());
+  testing::expect_mentions(testing::error_message([&] { pushed.push_sphere(0, Vec3(0, 0, -0.02)); }),
+                           {"indentation.yaml", "key 'force'", "no larger"});
+  testing::expect_mentions(testing::error_message([&] { pushed.push_sphere(0, Vec3(0.001, 0, -0.005)); }),
+                           {"key 'force'", "along that line"});
+  testing::expect_mentions(testing::error_message([&] { pushed.move_sphere(0, Vec3(0, 0, -0.001)); }),
+                           {"key 'force'", "driven by a force"});
+  testing::expect_mentions(testing::error_message([&] { pushed.push_sphere(1, Vec3(0, 0, -0.001)); }),
+                           {"sphere 1", "'contact'"});
+  Session moved(quiet_scene("scenes/indentation.yaml",
+                            {"solve.duration=0.002", "contact.0.force=null", "contact.0.displacement=[0, 0, -0.002]"},
+                            "hand_move"),
+                quiet());
+  moved.move_sphere(0, Vec3(0.001, 0, -0.003));  // within twice the path of it
+  testing::expect_mentions(testing::error_message([&] { moved.move_sphere(0, Vec3(0.01, 0, -0.002)); }),
+                           {"key 'displacement'", "scene path", "sampled"});
+  moved.step();
+  EXPECT_EQ(moved.finish().summary["status"], "ok");
+  Session still(quiet_scene("scenes/indentation.yaml", {"solve.analysis=static"}, "hand_static"), quiet());
+  testing::expect_mentions(testing::error_message([&] { still.push_sphere(0, Vec3(0, 0, -0.005)); }),
+                           {"solve.analysis", "dynamic"});
 }
 
 }  // namespace
