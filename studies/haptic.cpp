@@ -27,6 +27,7 @@
 // pressed on the body.
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 
 #include <omp.h>
 
@@ -181,6 +182,9 @@ void haptic_study(const StudyOptions& options) {
       result.headline(p["method"].get<std::string>() + " haptic iteration, median (cut every step)", p["median_ms"],
                       "ms");
   result["threads"] = omp_get_max_threads();
+  // How idle OpenMP threads wait (kerf's policy: passive; a haptic host that owns its cores may set active).
+  const char* wait = std::getenv("OMP_WAIT_POLICY");
+  result["omp_wait_policy"] = wait ? wait : "libgomp's default";
   result["points"] = points;
   result.write(runner.out_dir());
   plot("haptic", runner.out_dir());

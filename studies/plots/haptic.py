@@ -33,6 +33,7 @@ for ax, method in zip(axes[0], methods):
     ax.grid(True, which="both", lw=0.3)
 axes[0][0].set_ylabel("read tool + cut + step + force (ms)")
 axes[0][0].legend(fontsize=7)
-fig.suptitle(f"haptic loop, {study.get('threads', '?')} OpenMP threads", fontsize=9)
+fig.suptitle(f"haptic loop, {study.get('threads', '?')} OpenMP threads, OMP_WAIT_POLICY "
+             f"{study.get('omp_wait_policy', '?')}", fontsize=9)
 fig.tight_layout()
 fig.savefig(os.path.join(out, "haptic.png"), dpi=120)
