@@ -1,5 +1,6 @@
 #include "app/session.h"
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <optional>
@@ -345,11 +346,23 @@ ContactTerm& Session::sphere_in_hand(Index sphere, const char* what) {
 
 void Session::move_sphere(Index sphere, const Vec3& displacement) {
   sphere_in_hand(sphere, "move_sphere").move_sphere(sphere, displacement);  // refused: the sphere as it was
-  run_->guarded([&] { run_->parts.stepper->prescribed_values_changed(run_->state); });
+  run_->guarded([&] { run_->parts.stepper->applied_changed(run_->state); });
 }
 
 void Session::push_sphere(Index sphere, const Vec3& force) {
-  sphere_in_hand(sphere, "push_sphere").push_sphere(sphere, force);  // read from the next step's loads on
+  sphere_in_hand(sphere, "push_sphere").push_sphere(sphere, force);
+  run_->guarded([&] { run_->parts.stepper->applied_changed(run_->state); });
+}
+
+void Session::scale_loads(double factor) {
+  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
+             ": its loads take no more changes");
+  KERF_CHECK(run_->scene.solve.analysis == Analysis::dynamic, run_->scene.locate("solve.analysis").describe(),
+             ": scale_loads changes the loads between time steps; expected a dynamic run (a static run scales them ",
+             "by its load steps)");
+  KERF_CHECK(std::isfinite(factor), "scale_loads: the factor ", factor, " is not a finite number");
+  run_->parts.mechanics->scale_loads(factor);
+  run_->guarded([&] { run_->parts.stepper->applied_changed(run_->state); });
 }
 
 bool Session::done() const { return run_->taken >= run_->parts.stepper->step_count(); }

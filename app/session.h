@@ -58,6 +58,10 @@ class Session {
   /// its scene path (contact_term.h).
   void move_sphere(Index sphere, const Vec3& displacement);
   void push_sphere(Index sphere, const Vec3& force);
+  /// The scene's body force and boundary loads (tractions, pressures) times
+  /// `factor` from the next step on (dynamic runs; 1 at the start): an organ
+  /// turned over, a retractor's pull let go.
+  void scale_loads(double factor);
   /// Every step the scene asks for taken (solve.duration / solve.dt; static: solve.load_steps).
   bool done() const;
   int steps_taken() const;

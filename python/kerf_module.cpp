@@ -305,6 +305,8 @@ PYBIND11_MODULE(_kerf, m) {
           py::arg("sphere"), py::arg("force"),
           "Pushes a force-driven contact sphere with `force` (N) from the next step on (along its scene force, "
           "no larger)")
+      .def("scale_loads", [](PythonSession& s, double factor) { s.session().scale_loads(factor); },
+           py::arg("factor"), "The scene's body force and boundary loads times `factor` from the next step on")
       .def(
           "contact_force",
           [](PythonSession& s, Index sphere) {

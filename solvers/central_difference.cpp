@@ -95,12 +95,13 @@ class CentralDifferenceStepper final : public Stepper {
     layout_->to_whole_at(piece_state_.u, dofs, s.u);
   }
 
-  void prescribed_values_changed(SolverState& s) override {
+  void applied_changed(SolverState& s) override {
     constrained_ = mechanics_.dirichlet(s.t);
     layout_constrained_ = layout_->constrained(constrained_);
     SolverState& x = working(s);
     for (const DirichletDof& d : layout_constrained_) x.u[d.dof] = d.value;  // v and a stay zero there
-    // The next step starts from the acceleration at the moved state (one force evaluation a move).
+    // The next step starts from the acceleration of the new state and loads (one force evaluation a change).
+    layout_->external_force(s.t, f_ext_);
     layout_->internal_force(beta_ != 0.0 ? Vector(x.u + beta_ * x.v) : x.u, f_int_);
     acceleration(x.v, x.a);
   }

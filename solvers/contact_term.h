@@ -87,8 +87,8 @@ class ContactTerm {
   void restore(const AugmentationState& state);
   /// The state of sphere i at u.
   ContactReading reading(Index sphere, const Vector& u) const;
-  /// A session's hand on a sphere (dynamic runs; the stepper is told, as
-  /// prescribed_values_changed). A displacement-driven sphere's centre moved
+  /// A session's hand on a sphere (dynamic runs; the stepper is then told:
+  /// Stepper::applied_changed). A displacement-driven sphere's centre moved
   /// to `displacement` (m) from its reference position; a force-driven one
   /// pushed with `force` (N) from now on. Refused, naming the sphere's scene
   /// line and key, where the sphere would leave the part of the surface

@@ -75,7 +75,8 @@ class WholeBodyAsPiece final : public PieceLayout {
 class PieceLayoutVectors final : public ExplicitLayout {
  public:
   PieceLayoutVectors(const MechanicalSystem& mechanics, std::unique_ptr<PieceLayout> adapted, const PieceLayout& piece)
-      : adapted_(std::move(adapted)), piece_(piece), dofs_(piece.piece_dofs()), own_(piece.own_dof_count()),
+      : mechanics_(mechanics), adapted_(std::move(adapted)), piece_(piece), dofs_(piece.piece_dofs()),
+        own_(piece.own_dof_count()),
         exchange_(mechanics.dof_count(), own_,
                   std::span<const Index>(dofs_).subspan(static_cast<std::size_t>(own_))) {}
   bool piece() const override { return true; }
@@ -89,7 +90,10 @@ class PieceLayoutVectors final : public ExplicitLayout {
     exchange_.sum_and_share(m);
     return m;
   }
-  void external_force(double t, Vector& f) const override { piece_.piece_external_force(t, f); }
+  void external_force(double t, Vector& f) const override {
+    piece_.piece_external_force(t, f);  // the body's alone: a body with contact spheres is laid out whole
+    if (mechanics_.load_scale() != 1.0) f *= mechanics_.load_scale();
+  }
   std::vector<DirichletDof> constrained(const std::vector<DirichletDof>& whole) const override;
   double weighted_square(const Vector& x, const Vector& w) const override {
     return exchange_.sum(x.head(own_).dot(w.head(own_).cwiseProduct(x.head(own_))));
@@ -101,6 +105,7 @@ class PieceLayoutVectors final : public ExplicitLayout {
   }
 
  private:
+  const MechanicalSystem& mechanics_;
   std::unique_ptr<PieceLayout> adapted_;  // a whole body seen as a piece, or null
   const PieceLayout& piece_;
   const std::vector<Index>& dofs_;

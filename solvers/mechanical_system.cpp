@@ -151,10 +151,14 @@ void MechanicalSystem::consistent_mass(const BlockSink& sink) const {
 }
 
 void MechanicalSystem::external_force(double t, Vector& f) const {
-  if (!contact_) return body_.external_force(t, f);
+  if (!contact_) {
+    body_.external_force(t, f);
+    if (load_scale_ != 1.0) f *= load_scale_;
+    return;
+  }
   body_.external_force(t, body_f_);
   f.resize(dof_count());
-  f.head(body_dofs_) = body_f_;
+  f.head(body_dofs_) = load_scale_ * body_f_;
   f.tail(dof_count() - body_dofs_).setZero();
   contact_->fill_external_force(f);
 }

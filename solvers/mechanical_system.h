@@ -93,7 +93,12 @@ class MechanicalSystem {
   Vector lumped_mass() const;
   /// This rank's part when the body is partitioned (a partial matrix).
   void consistent_mass(const BlockSink& sink) const;
+  /// f_ext(t): the body's loads times load_scale(), and the force-driven spheres' forces.
   void external_force(double t, Vector& f) const;
+  /// The scene's body force and boundary loads scaled from now on (a session
+  /// changing a load between steps; 1 at the start).
+  void scale_loads(double factor) { load_scale_ = factor; }
+  double load_scale() const { return load_scale_; }
   std::vector<DirichletDof> dirichlet(double t) const;
 
  private:
@@ -111,6 +116,7 @@ class MechanicalSystem {
   RowShare share_;
   std::unique_ptr<RankSum> rank_sum_;
   std::vector<Index> kept_nodes_;
+  double load_scale_ = 1.0;
   mutable Vector body_u_, body_f_;  // buffers of the calls made every step (internal and external force)
 };
 

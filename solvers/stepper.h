@@ -34,10 +34,12 @@ class Stepper {
   /// and makes the state consistent again (the acceleration of explicit and
   /// Newmark schemes). u and v carry over unchanged.
   virtual void discretization_changed(SolverState& state) = 0;
-  /// The prescribed values changed (not which dofs are prescribed: a contact
-  /// sphere moved by a session): a stepper that keeps them takes the new
-  /// ones into the state now; the others read them every step.
-  virtual void prescribed_values_changed(SolverState&) {}
+  /// The loads or the prescribed values changed between steps (not which
+  /// dofs are prescribed: a session's hand on a sphere or a load): a stepper
+  /// that keeps them takes the new ones into the state now (central
+  /// differences: u at those dofs and the acceleration); the others read
+  /// them every step.
+  virtual void applied_changed(SolverState&) {}
   /// Makes the state's whole vectors (u, v, a over every dof) current: a
   /// stepper that keeps them in pieces (central differences on a
   /// partitioned body) fills them only when asked, so that a step sends only
