@@ -324,9 +324,10 @@ void Session::refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) 
       body.min = body.min.cwiseMin(Vec3(r[0], r[1], r[2])), body.max = body.max.cwiseMax(Vec3(r[3], r[4], r[5]));
   bool apart = false;
   for (int a = 0; a < dim; ++a) apart |= pieces.max[a] < body.min[a] || pieces.min[a] > body.max[a];
+  if (!apart) return;
   std::ostringstream where;
   for (const Vec3& v : vertices) where << " [" << v.transpose() << "]";
-  KERF_CHECK(!apart, now.where, ": the blade's new position (", where.str().substr(1), ") leaves the cut's new ",
+  KERF_CHECK(false, now.where, ": the blade's new position (", where.str().substr(1), ") leaves the cut's new ",
              "pieces wholly outside the body (their box [", pieces.min.transpose(), "] to [", pieces.max.transpose(),
              "] misses the body's, [", body.min.transpose(), "] to [", body.max.transpose(), "]); expected a position ",
              "that cuts into the body. The cut is kept as it was");

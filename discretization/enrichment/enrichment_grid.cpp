@@ -27,7 +27,7 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
   size_lattice(padding);
   const bool grows =
       before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
-  const CutRegionIndex added(cut, grows ? before->pieces_ : 0, pieces_, frame_);
+  const CutRegionIndex added(cut, grows ? before->pieces_ : pieces_, pieces_, frame_);  // the new pieces
   ParallelFailure failure;
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c)
