@@ -125,7 +125,8 @@ CutSurface cut_surface(int dim, std::vector<Vec3> vertices, std::vector<double> 
 
 void extend_cut_surface(CutSurface& cut, std::span<const Vec3> vertices, double time) {
   KERF_CHECK(cut.times.empty() || time >= cut.times.back(), cut.where, ": a vertex at t = ", time,
-             " s comes before the cut's last vertex (t = ", cut.times.back(), " s); expected times that never decrease");
+             " s comes before the cut's last vertex (t = ", cut.times.back(),
+             " s); expected times that never decrease");
   const std::size_t vertex_count = cut.vertices.size();
   const Index piece_count = cut.piece_count();
   const double extent = cut.extent;
