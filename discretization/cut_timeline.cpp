@@ -7,15 +7,14 @@
 
 namespace kerf {
 
-CutTimeline::CutTimeline(const Scene& scene)
-    : dimension_(scene.dimension), cuts_(scene.cuts) {
-  for (const Cut& c : cuts_) {
-    surfaces_.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
-    cut_grows_.push_back(c.grows());
-  }
+CutTimeline::CutTimeline(const Scene& scene) : cuts_(scene.cuts) {
+  for (const Cut& c : cuts_) surfaces_.push_back(cut_surface(scene.dimension, c.vertices, c.times, c.where.describe()));
 }
 
-bool CutTimeline::grows() const { return std::find(cut_grows_.begin(), cut_grows_.end(), 1) != cut_grows_.end(); }
+// A fed cut stays live, and a scripted one keeps its times: whether a cut grows is fixed by the scene.
+bool CutTimeline::grows() const {
+  return std::any_of(cuts_.begin(), cuts_.end(), [](const Cut& c) { return c.grows(); });
+}
 
 void CutTimeline::extend(Index c, std::span<const Vec3> vertices, double time) {
   KERF_CHECK(c >= 0 && c < cut_count(), "cut ", c, " does not exist: the scene has ", cut_count(), " cut(s)");
@@ -39,7 +38,7 @@ Index CutTimeline::pieces_at(double t) const {
 bool CutTimeline::grows_by_splitting() const {
   bool any = false;
   for (std::size_t c = 0; c < cuts_.size(); ++c) {
-    if (!cut_grows_[c]) continue;
+    if (!cuts_[c].grows()) continue;
     if (cuts_[c].fem != FemCut::split) return false;
     any = true;
   }

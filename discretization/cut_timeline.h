@@ -42,10 +42,8 @@ class CutTimeline {
   bool grows_by_splitting() const;
 
  private:
-  int dimension_;
   std::vector<Cut> cuts_;
   std::vector<CutSurface> surfaces_;
-  std::vector<char> cut_grows_;  // per cut, from the scene: its pieces appear after t = 0 or are fed at run time
 };
 
 /// The timeline every part of a run shares (never null; empty without cuts).

@@ -26,7 +26,7 @@ std::string whole_on_every_rank(const Scene& scene) {
     const Cut& cut = scene.cuts[i];
     const std::string key = "cuts." + std::to_string(i);
     if (cut.grows())
-      return key + ".times: a growing FEM cut meshes the body anew at each growth, so every rank builds and "
+      return key + (cut.live ? ".live" : ".times") + ": a growing FEM cut meshes the body anew at each growth, so every rank builds and "
                    "assembles the whole body; only the linear solve is shared";
     if (cut.fem == FemCut::split)
       return key + ".fem: split: cells split by a cut are not divided among the ranks yet; each rank holds the "

@@ -215,7 +215,8 @@ void validate_cut(const Refusal& r, const Scene& s, const Cut& cut, const std::s
   // What is not built yet.
   const bool grows = cut.grows();
   const MethodDescriptor& method = method_descriptor(s.discretization.method);
-  r.require(s.contact.empty() || !grows || !method.rebuilt_as_cut_grows, key + ".times",
+  const std::string grows_key = key + (cut.live ? ".live" : ".times");
+  r.require(s.contact.empty() || !grows || !method.rebuilt_as_cut_grows, grows_key,
             "contact with a growing cut in fem is not built yet (each growth meshes the body anew, and the spheres' "
             "state is not carried onto it); expected discretization.method efg or nodal, every vertex at t = 0, or "
             "no contact");
