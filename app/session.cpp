@@ -1,5 +1,6 @@
 #include "app/session.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -109,21 +110,35 @@ RunParts set_up(const Scene& scene, const SharedCuts& cuts, const MpiContext& mp
   return run;
 }
 
-/// The box around the pieces that vertices `first_new` on of `v` add to a cut (corners a piece: 2 for a
-/// polyline, 3 for a strip); empty (min > max) when they add none.
-Box box_of_new_pieces(const std::vector<Vec3>& v, std::size_t first_new, std::size_t corners) {
+/// "[x y z] to [x y z]" (m).
+std::string text_of(const Box& box) {
+  std::ostringstream text;
+  text << "[" << box.min.transpose() << "] to [" << box.max.transpose() << "]";
+  return text.str();
+}
+
+/// The box around the pieces `added` makes with the cut's vertices so far (`fed`; corners a piece: 2 for a
+/// polyline, 3 for a strip): the new vertices and the last corners - 1 before them. Empty (min > max) when
+/// they make no piece yet.
+Box box_of_new_pieces(std::span<const Vec3> fed, std::span<const Vec3> added, std::size_t corners) {
   Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
-  if (v.size() < corners) return box;
-  for (std::size_t k = first_new + 1 >= corners ? first_new + 1 - corners : 0; k < v.size(); ++k)
-    box.min = box.min.cwiseMin(v[k]), box.max = box.max.cwiseMax(v[k]);
+  if (fed.size() + added.size() < corners) return box;
+  auto take = [&](const Vec3& v) { box.min = box.min.cwiseMin(v), box.max = box.max.cwiseMax(v); };
+  std::for_each(fed.end() - static_cast<std::ptrdiff_t>(std::min(fed.size(), corners - 1)), fed.end(), take);
+  std::for_each(added.begin(), added.end(), take);
   return box;
 }
 
-/// The box around a body's nodes, a millionth of its size wider.
-Box box_of_body(const DiscreteBody& body) {
+/// The box around a body's nodes (on every rank: the box around their pieces), a millionth of its size
+/// wider. A cut splitting or remeshing the body keeps it. Collective.
+Box box_of_body(const DiscreteBody& body, const RankShare& ranks) {
   Box box{Vec3::Constant(1e300), Vec3::Constant(-1e300)};
   for (Index n = 0; n < body.node_count(); ++n)
     box.min = box.min.cwiseMin(body.node_position(n)), box.max = box.max.cwiseMax(body.node_position(n));
+  if (ranks.distributed())
+    for (const std::vector<double>& r : values_of_every_rank(
+             {box.min.x(), box.min.y(), box.min.z(), box.max.x(), box.max.y(), box.max.z()}, ranks))
+      box.min = box.min.cwiseMin(Vec3(r[0], r[1], r[2])), box.max = box.max.cwiseMax(Vec3(r[3], r[4], r[5]));
   const Vec3 margin = Vec3::Constant(1e-6 * (box.max - box.min).norm());
   return {box.min - margin, box.max + margin};
 }
@@ -160,6 +175,11 @@ struct Session::Run {
   void write_summary() {
     if (options.writes_files()) write_file_atomically(summary_path, summary_text(outcome.summary));
   }
+  /// The caller's errors, refused without touching the summary: a call on a
+  /// finished or failed session, a hand on a static run, a sphere not in the scene.
+  void refuse_if_closed(const char* what) const;
+  void refuse_unless_dynamic(const char* what) const;
+  ContactTerm& contact_sphere(Index sphere, const char* what) const;
 
   const Scene scene;
   const RunOptions options;
@@ -176,6 +196,7 @@ struct Session::Run {
   int taken = 0;       // steps
   int written_at = 0;  // the step whose output was written last
   Vector body_u, body_v;  // the body's part of the state (a contact sphere's dofs follow it)
+  Box body_box;           // around the body's nodes: a blade off it is refused
   bool finished = false, failed = false;
 };
 
@@ -217,6 +238,7 @@ void Session::Run::open() {
   const double start = now_seconds();
   std::optional<ProgressHeartbeat> heartbeat = announce_long_meshing(scene, options, estimate);
   parts = set_up(scene, cuts, options.mpi, state, report);
+  body_box = box_of_body(*parts.body, options.mpi.ranks);
   heartbeat.reset();
   report.setup_seconds = now_seconds() - start;
   observer.emplace(scene, outcome.directory, cuts, *parts.probes, options.mpi.ranks);
@@ -299,8 +321,7 @@ void Session::step() {
 
 void Session::extend_cut(Index cut, std::span<const Vec3> vertices) {
   // A refused piece is the caller's error, not the run's: the cut and the summary stay as they were.
-  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
-             ": its cuts take no more vertices");
+  run_->refuse_if_closed("extend_cut");
   KERF_CHECK(cut >= 0 && cut < run_->timeline->cut_count(), "cut ", cut, " does not exist: the scene has ",
              run_->timeline->cut_count(), " cut(s)");
   refuse_a_blade_outside(cut, vertices);
@@ -311,38 +332,41 @@ void Session::refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) 
   // New pieces that lie wholly outside the body's box cut nothing: a blade moved off the body. (Inside the
   // box but outside a curved body is not refused: only what is certainly outside is.)
   const CutSurface& now = run_->timeline->surface(cut);
-  std::vector<Vec3> all = now.vertices;
-  all.insert(all.end(), vertices.begin(), vertices.end());
   const int dim = now.dimension;
-  const Box pieces = box_of_new_pieces(all, now.vertices.size(), dim == 2 ? 2 : 3);
+  const Box pieces = box_of_new_pieces(now.vertices, vertices, dim == 2 ? 2 : 3);
   if ((pieces.min.array() > pieces.max.array()).any()) return;  // no piece yet: the blade's first position
-  Box body = box_of_body(*run_->parts.body);
-  if (run_->options.mpi.ranks.distributed())  // a body divided among the ranks: the box around their pieces
-    for (const std::vector<double>& r : values_of_every_rank({body.min.x(), body.min.y(), body.min.z(), body.max.x(),
-                                                              body.max.y(), body.max.z()},
-                                                             run_->options.mpi.ranks))
-      body.min = body.min.cwiseMin(Vec3(r[0], r[1], r[2])), body.max = body.max.cwiseMax(Vec3(r[3], r[4], r[5]));
+  const Box& body = run_->body_box;
   bool apart = false;
   for (int a = 0; a < dim; ++a) apart |= pieces.max[a] < body.min[a] || pieces.min[a] > body.max[a];
   if (!apart) return;
   std::ostringstream where;
   for (const Vec3& v : vertices) where << " [" << v.transpose() << "]";
-  KERF_CHECK(false, now.where, ": the blade's new position (", where.str().substr(1), ") leaves the cut's new ",
-             "pieces wholly outside the body (their box [", pieces.min.transpose(), "] to [", pieces.max.transpose(),
-             "] misses the body's, [", body.min.transpose(), "] to [", body.max.transpose(), "]); expected a position ",
-             "that cuts into the body. The cut is kept as it was");
+  throw Error(now.where + ": the blade's new position (" + where.str().substr(1) + ") leaves the cut's new " +
+              "pieces wholly outside the body's box (theirs " + text_of(pieces) + ", the body's " + text_of(body) +
+              "); expected a position that cuts into the body. The cut is kept as it was");
 }
 
-ContactTerm& Session::sphere_in_hand(Index sphere, const char* what) {
-  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
-             ": its spheres take no more moves");
-  KERF_CHECK(run_->scene.solve.analysis == Analysis::dynamic, run_->scene.locate("solve.analysis").describe(), ": ",
-             what, " moves a sphere between time steps; expected a dynamic run");
-  ContactTerm* contact = run_->parts.mechanics->contact();
+ContactTerm& Session::Run::contact_sphere(Index sphere, const char* what) const {
+  ContactTerm* contact = parts.mechanics->contact();
   const Index spheres = contact ? contact->sphere_count() : 0;
   KERF_CHECK(sphere >= 0 && sphere < spheres, what, ": sphere ", sphere, " is not in the scene's 'contact' list, ",
              "which has ", spheres, " spheres");
   return *contact;
+}
+
+void Session::Run::refuse_if_closed(const char* what) const {
+  KERF_CHECK(!finished && !failed, what, ": this session is ", failed ? "failed" : "finished", "; open a new one");
+}
+
+void Session::Run::refuse_unless_dynamic(const char* what) const {
+  KERF_CHECK(scene.solve.analysis == Analysis::dynamic, scene.locate("solve.analysis").describe(), ": ", what,
+             " acts between time steps; expected a dynamic run (a static run scales its loads by its load steps)");
+}
+
+ContactTerm& Session::sphere_in_hand(Index sphere, const char* what) {
+  run_->refuse_if_closed(what);
+  run_->refuse_unless_dynamic(what);
+  return run_->contact_sphere(sphere, what);
 }
 
 void Session::move_sphere(Index sphere, const Vec3& displacement) {
@@ -356,11 +380,8 @@ void Session::push_sphere(Index sphere, const Vec3& force) {
 }
 
 void Session::scale_loads(double factor) {
-  KERF_CHECK(!run_->finished && !run_->failed, "this session is ", run_->failed ? "failed" : "finished",
-             ": its loads take no more changes");
-  KERF_CHECK(run_->scene.solve.analysis == Analysis::dynamic, run_->scene.locate("solve.analysis").describe(),
-             ": scale_loads changes the loads between time steps; expected a dynamic run (a static run scales them ",
-             "by its load steps)");
+  run_->refuse_if_closed("scale_loads");
+  run_->refuse_unless_dynamic("scale_loads");
   KERF_CHECK(std::isfinite(factor), "scale_loads: the factor ", factor, " is not a finite number");
   run_->parts.mechanics->scale_loads(factor);
   run_->guarded([&] { run_->parts.stepper->applied_changed(run_->state); });
@@ -394,13 +415,10 @@ nlohmann::ordered_json Session::probes() {
 }
 
 Vec3 Session::contact_force(Index sphere) {
-  const ContactTerm* contact = run_->parts.mechanics->contact();
-  const Index spheres = contact ? contact->sphere_count() : 0;
-  KERF_CHECK(sphere >= 0 && sphere < spheres, "contact_force: sphere ", sphere, " is not in the scene's 'contact' ",
-             "list, which has ", spheres, " spheres");
+  const ContactTerm& contact = run_->contact_sphere(sphere, "contact_force");
   return run_->guarded([&] {
     run_->parts.stepper->complete_state(run_->state);
-    return contact->reading(sphere, run_->state.u).force;
+    return contact.reading(sphere, run_->state.u).force;
   });
 }
 

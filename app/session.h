@@ -48,7 +48,7 @@ class Session {
   /// these vertices a time within that step. A cut declared with no vertices
   /// (`strip: []`) is fed only this way. Throws, the cut left as it was,
   /// when a new piece is degenerate or folds the cut, or when the new pieces
-  /// lie wholly outside the body (a blade moved off it).
+  /// lie wholly outside the body's box (a blade moved off it).
   void extend_cut(Index cut, std::span<const Vec3> vertices);
   /// A hand on contact sphere `sphere` (its index in the scene's `contact`;
   /// dynamic runs), from the next step on: a displacement-driven sphere's
@@ -95,7 +95,7 @@ class Session {
   RunOutcome finish();
 
  private:
-  /// Throws when the pieces `vertices` add to cut `cut` lie wholly outside the body (collective).
+  /// Throws when the pieces `vertices` add to cut `cut` lie wholly outside the body's box.
   void refuse_a_blade_outside(Index cut, std::span<const Vec3> vertices) const;
   /// The contact term, after checking that the session can take a hand on sphere `sphere` (`what`: the call).
   ContactTerm& sphere_in_hand(Index sphere, const char* what);
