@@ -99,11 +99,17 @@ class CentralDifferenceStepper final : public Stepper {
     constrained_ = mechanics_.dirichlet(s.t);
     layout_constrained_ = layout_->constrained(constrained_);
     SolverState& x = working(s);
-    for (const DirichletDof& d : layout_constrained_) x.u[d.dof] = d.value;  // v and a stay zero there
-    // The next step starts from the acceleration of the new state and loads (one force evaluation a change).
-    layout_->external_force(s.t, f_ext_);
-    layout_->internal_force(beta_ != 0.0 ? Vector(x.u + beta_ * x.v) : x.u, f_int_);
-    acceleration(x.v, x.a);
+    // Prescribed values move only with a contact sphere, and a body with spheres is laid out whole: `moved`
+    // is the same on every rank (a piece layout's force evaluation is collective).
+    bool moved = false;  // v and a stay zero at prescribed dofs
+    for (const DirichletDof& d : layout_constrained_)
+      if (x.u[d.dof] != d.value) x.u[d.dof] = d.value, moved = true;
+    // The next step starts from the acceleration of the new loads, and of the new state when a value moved
+    // (a force evaluation then; new loads alone keep the step's own f_int).
+    if (moved)
+      read_forces(x, s.t);
+    else
+      layout_->external_force(s.t, f_ext_), acceleration(x.v, x.a);
   }
 
   void discretization_changed(SolverState& s) override {
@@ -129,15 +135,7 @@ class CentralDifferenceStepper final : public Stepper {
     substeps_ = options_.allow_unstable_dt ? 1 : std::max(1, static_cast<int>(std::ceil(needed)));
     solver.substeps_max = std::max(solver.substeps_max, substeps_);
     // A remeshed body comes with a new stepper, which has read no load yet.
-    SolverState& x = working(s);
-    layout_->external_force(s.t, f_ext_);
-    if (beta_ != 0.0) {
-      damped_u_ = x.u + beta_ * x.v;
-      layout_->internal_force(damped_u_, f_int_);
-    } else {
-      layout_->internal_force(x.u, f_int_);
-    }
-    acceleration(x.v, x.a);
+    read_forces(working(s), s.t);
   }
 
   double kinetic_energy(const SolverState& s) const override {
@@ -278,6 +276,18 @@ class CentralDifferenceStepper final : public Stepper {
     s.v = half_velocity_ + 0.5 * h * s.a;
     zero_constrained(s.v);
     s.t = t1;
+  }
+
+  /// f_ext(t), f_int at x (with stiffness damping: at u + beta v) and the acceleration they give.
+  void read_forces(SolverState& x, double t) {
+    layout_->external_force(t, f_ext_);
+    if (beta_ != 0.0) {
+      damped_u_ = x.u + beta_ * x.v;
+      layout_->internal_force(damped_u_, f_int_);
+    } else {
+      layout_->internal_force(x.u, f_int_);
+    }
+    acceleration(x.v, x.a);
   }
 
   /// a = M^-1 (f_ext - f_int - alpha M v), zero at constrained dofs; no allocation once sized.
