@@ -173,6 +173,14 @@ class PythonSession {
   bool finished_ = false;
 };
 
+/// Session.move_sphere or push_sphere: `call` with the sphere and a vector from Python.
+template <void (Session::*call)(Index, const Vec3&)>
+auto sphere_hand(const char* what) {
+  return [what](PythonSession& s, Index sphere, const std::vector<double>& v) {
+    (s.session().*call)(sphere, point_of(v, what));
+  };
+}
+
 /// A run's record as Python values: what read_outcome gives C++.
 py::dict record_counts(const RunRecord& r) {
   const RunCounts& c = r.report.counts;
@@ -289,20 +297,12 @@ PYBIND11_MODULE(_kerf, m) {
           py::arg("cut"), py::arg("vertices"),
           "Feeds a live cut (scene: live: true, or strip: []) its next vertices: a polyline's next vertex, a "
           "strip's next pair (the blade's two ends, m); their pieces appear by the end of the next step")
-      .def(
-          "move_sphere",
-          [](PythonSession& s, Index sphere, const std::vector<double>& displacement) {
-            s.session().move_sphere(sphere, point_of(displacement, "Session.move_sphere: the displacement"));
-          },
+      .def("move_sphere", sphere_hand<&Session::move_sphere>("Session.move_sphere: the displacement"),
           py::arg("sphere"), py::arg("displacement"),
           "Moves a displacement-driven contact sphere's centre to `displacement` (m) from its scene position, "
           "from the next step on (within the path its scene gives it)")
-      .def(
-          "push_sphere",
-          [](PythonSession& s, Index sphere, const std::vector<double>& force) {
-            s.session().push_sphere(sphere, point_of(force, "Session.push_sphere: the force"));
-          },
-          py::arg("sphere"), py::arg("force"),
+      .def("push_sphere", sphere_hand<&Session::push_sphere>("Session.push_sphere: the force"), py::arg("sphere"),
+           py::arg("force"),
           "Pushes a force-driven contact sphere with `force` (N) from the next step on (along its scene force, "
           "no larger)")
       .def("scale_loads", [](PythonSession& s, double factor) { s.session().scale_loads(factor); },

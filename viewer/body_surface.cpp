@@ -32,10 +32,10 @@ vtkNew<vtkDoubleArray> named_array(const char* name, int components, Index tuple
 
 }  // namespace
 
-BodySurface::BodySurface(const BodySnapshot& body) : reference_(body.points) {
+BodySurface::BodySurface(const BodySnapshot& body) {
   meshless_ = std::all_of(body.cell_types.begin(), body.cell_types.end(), [](std::uint8_t t) { return t == VTK_VERTEX; });
   if (meshless_) {
-    const Mesh delaunay = delaunay_mesh(reference_, 3);
+    const Mesh delaunay = delaunay_mesh(body.points, 3);
     tetrahedra_ = delaunay.cells;
     dropped_.assign(delaunay.cell_count(), 0);
   }

@@ -28,7 +28,6 @@ class BodySurface {
   /// The reference position (m) of a point of the drawn surface, from the
   /// "reference" point array a surface filter passes on.
   static constexpr const char* reference_array = "reference";
-  Index drawn_cells() const { return grid_->GetNumberOfCells(); }
 
  private:
   void take_cells(const BodySnapshot& body);

@@ -44,9 +44,10 @@ ViewArguments parse(const std::vector<std::string>& args) {
     else if (s == "--size")
       KERF_CHECK(std::sscanf(value().c_str(), "%dx%d", &a.view.width, &a.view.height) == 2 && a.view.width > 0 &&
                      a.view.height > 0, "--size: expected WIDTHxHEIGHT in pixels, as 900x700\n", usage);
-    else if (s.rfind("--", 0) == 0) throw Error("unknown option '" + s + "'\n" + usage);
+    else if (s.rfind("--set=", 0) == 0) a.overrides.push_back(s.substr(6));  // as `kerf run` takes it
+    else if (s.rfind("--", 0) == 0) KERF_CHECK(false, "unknown option '", s, "'\n", usage);
     else if (a.scene.empty()) a.scene = s;
-    else throw Error("unexpected argument '" + s + "'\n" + usage);
+    else KERF_CHECK(false, "unexpected argument '", s, "'\n", usage);
   }
   KERF_CHECK(!a.scene.empty(), "kerf view needs a scene file\n", usage);
   return a;

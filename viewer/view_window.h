@@ -51,7 +51,6 @@ class ViewWindow {
   void screenshot(const std::string& path);
   int width() const { return options_.width; }
   int height() const { return options_.height; }
-  const BladeInput* blade() const { return blade_.get(); }
 
  private:
   class Style;
