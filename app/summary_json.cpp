@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/interrupt.h"
+#include "core/module_loader.h"
 #include "core/peak_memory.h"
 #include "core/thread_policy.h"
 
@@ -29,6 +30,14 @@ json milliseconds_summary(std::vector<double> seconds) {
 json counted_milliseconds(const std::vector<double>& seconds) {
   json out = milliseconds_summary(seconds);
   out["count"] = seconds.size();
+  return out;
+}
+
+/// The modules (core/module_loader.h) this process loaded by now, and what
+/// each cost: what a run did not need is not there.
+json modules_json() {
+  json out = json::object();
+  for (const LoadedModule& m : loaded_modules()) out[m.name] = {{"load_ms", m.load_ms}, {"libraries", m.libraries}};
   return out;
 }
 
@@ -126,7 +135,8 @@ void write_report(const RunReport& report, json& summary) {
                        {"phases", phases},
                        {"step_ms", counted_milliseconds(report.step_seconds)},
                        {"cut_update_ms", counted_milliseconds(report.cut_update_seconds)},
-                       {"cut_refresh_ms", counted_milliseconds(report.cut_refresh_seconds)}};
+                       {"cut_refresh_ms", counted_milliseconds(report.cut_refresh_seconds)},
+                       {"modules", modules_json()}};
   summary["stages"] = report.stages;
   summary["notes"] = report.notes;
   summary["solver"] = solver_counters(report);

@@ -4,7 +4,8 @@
 // in rank order) followed by its ghosts' (entries other ranks own that its
 // cells touch). Through a PETSc ghosted vector (VecCreateGhost): an entry
 // summed over the ranks crosses only between the ranks that share it, not
-// the whole vector to every rank as RankSum's does. Collective calls.
+// the whole vector to every rank as RankSum's does (in the PETSc module:
+// solvers/petsc_module.h). Collective calls.
 #include <memory>
 #include <span>
 #include <vector>
@@ -40,16 +41,18 @@ class GhostExchange {
   /// Every entry of the whole vector on every rank.
   void gather_all(const Vector& local, Vector& whole) const;
 
- private:
-  struct Petsc;
-  struct Gather;  // a scatter of some entries, or all, to every rank
-  std::unique_ptr<Gather> make_gather(std::span<const Index> entries) const;
-  std::unique_ptr<Gather> make_gather_all() const;
-  void gather_with(const Gather& gather, const Vector& local, Vector& whole) const;
+  /// What exchanges the entries (the PETSc module's), sized as this exchange.
+  class Engine {
+   public:
+    virtual ~Engine() = default;
+    virtual void sum_and_share(Vector& local) const = 0;
+    virtual void gather(const Vector& local, std::span<const Index> entries, Vector& whole) const = 0;
+    virtual void gather_all(const Vector& local, Vector& whole) const = 0;
+  };
 
-  Index global_size_, own_count_, ghost_count_;
-  std::unique_ptr<Petsc> petsc_;
-  mutable std::unique_ptr<Gather> all_, listed_;  // built when first asked
+ private:
+  Index own_count_, ghost_count_;
+  std::unique_ptr<Engine> engine_;
   RankNumbers numbers_;
 };
 

@@ -1,8 +1,5 @@
 #include "solvers/petsc_session.h"
 
-#include <petscsys.h>
-#include <petscvec.h>
-
 #include <chrono>
 #include <csignal>
 #include <cstdlib>
@@ -11,6 +8,7 @@
 #include <thread>
 
 #include "core/check.h"
+#include "solvers/petsc_module.h"
 
 namespace kerf {
 namespace {
@@ -23,22 +21,10 @@ bool launched_by_mpi() {
 }  // namespace
 
 void check_petsc(int code, const char* call) {
-  if (code == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw Error(std::string("petsc: ") + call + " failed: " + (text ? text : "unknown error") + " (code " +
-              std::to_string(code) + ")");
+  if (code != 0) petsc_module().check(code, call);
 }
 
-void ensure_petsc_initialized() {
-  PetscBool initialized = PETSC_FALSE;
-  check_petsc(PetscInitialized(&initialized), "PetscInitialized");
-  if (initialized) return;
-  // kerf reports its own errors; PETSc must not take over signals.
-  check_petsc(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr), "PetscOptionsSetValue");
-  check_petsc(PetscInitializeNoArguments(), "PetscInitializeNoArguments");
-  std::atexit([] { PetscFinalize(); });
-}
+void ensure_petsc_initialized() { petsc_module().start(); }
 
 void stop_every_rank(const RankShare& ranks, int code, const std::string& message, bool shared,
                      const std::function<void()>& if_alone) {
@@ -63,19 +49,15 @@ void stop_every_rank(const RankShare& ranks, int code, const std::string& messag
   const std::string line =
       "kerf: error: " + (ranks.rank != 0 ? "rank " + std::to_string(ranks.rank) + ": " : "") + message + "\n";
   std::cerr << line << std::flush;
-  MPI_Abort(PETSC_COMM_WORLD, code);
+  petsc_module().abort(code);
   std::_Exit(code);  // MPI_Abort does not return; should it, nothing may wait for this rank
 }
 
-void wait_for_every_rank() { check_petsc(PetscBarrier(nullptr), "PetscBarrier"); }
+void wait_for_every_rank() { petsc_module().barrier(); }
 
 RankShare mpi_ranks() {
   if (!launched_by_mpi()) return {};
-  ensure_petsc_initialized();
-  PetscMPIInt rank = 0, size = 1;
-  check_petsc(MPI_Comm_rank(PETSC_COMM_WORLD, &rank), "MPI_Comm_rank");
-  check_petsc(MPI_Comm_size(PETSC_COMM_WORLD, &size), "MPI_Comm_size");
-  return {rank, size};
+  return petsc_module().ranks();
 }
 
 }  // namespace kerf

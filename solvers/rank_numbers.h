@@ -1,7 +1,8 @@
 #pragma once
 // One number from every MPI rank, combined: their sum or their smallest,
 // through a PETSc vector of one entry a rank (kerf passes no message of its
-// own). Collective: every rank calls alike.
+// own, and PETSc is the PETSc module's: solvers/petsc_module.h). Collective:
+// every rank calls alike.
 #include <memory>
 
 namespace kerf {
@@ -18,10 +19,16 @@ class RankNumbers {
   /// The smallest of every rank's x.
   double smallest(double x) const;
 
+  /// What combines them (the PETSc module's).
+  class Engine {
+   public:
+    virtual ~Engine() = default;
+    virtual double sum(double x) const = 0;
+    virtual double smallest(double x) const = 0;
+  };
+
  private:
-  void set_mine(double x) const;  // this rank's entry
-  struct Petsc;
-  std::unique_ptr<Petsc> petsc_;
+  std::unique_ptr<Engine> engine_;
 };
 
 }  // namespace kerf

@@ -3,7 +3,8 @@
 // a vector over all dofs of which a rank touches only some entries (its rows
 // and its ghosts'), and a number. Every rank gets the whole sum. Through
 // PETSc (a parallel vector assembled with ADD_VALUES, then gathered to all):
-// kerf passes no message of its own.
+// kerf passes no message of its own, and PETSc is the PETSc module's
+// (solvers/petsc_module.h).
 #include <memory>
 #include <vector>
 
@@ -28,10 +29,16 @@ class RankSum {
   /// The smallest of every rank's x.
   double smallest(double x) const { return numbers_.smallest(x); }
 
+  /// What sums the vectors (the PETSc module's).
+  class Engine {
+   public:
+    virtual ~Engine() = default;
+    virtual void sum(Vector& v) const = 0;
+  };
+
  private:
   RankNumbers numbers_;
-  struct Petsc;  // PETSc's objects and the gathered entries (reused by every call)
-  std::unique_ptr<Petsc> petsc_;
+  std::unique_ptr<Engine> engine_;
 };
 
 /// Every rank's `mine` (the same length on each), in rank order. Collective:

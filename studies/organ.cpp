@@ -28,15 +28,12 @@
 // below 1e-10). Quick: every run finishes, VCI's residual, and NSNI with VCI
 // closer than the defaults. Nodal integration at its defaults is not within
 // 3 % (+10 / +14 / +13 % at 4 mm, measured): reported, not claimed.
-#include <gmsh.h>
-
 #include <cmath>
 #include <filesystem>
 #include <sstream>
 
 #include "core/check.h"
-#include "core/thread_scope.h"
-#include "geometry/gmsh_session.h"
+#include "geometry/gmsh_module.h"
 #include "problem/scene_reader.h"
 #include "studies/study_support.h"
 
@@ -59,18 +56,7 @@ const std::vector<Way> ways{
 
 /// organ.geo meshed by gmsh at `size` (m) and `order`, written to `path`.
 void mesh_organ(const std::string& path, double size, int order) {
-  SingleThreadScope serial;  // the same mesh every run
-  ensure_gmsh_initialized();
-  gmsh::clear();
-  gmsh::open(study_data_path("scenes/meshes/organ.geo"));
-  gmsh::option::setNumber("Mesh.MeshSizeMin", size);
-  gmsh::option::setNumber("Mesh.MeshSizeMax", size);
-  gmsh::model::mesh::generate(3);
-  if (order == 2) gmsh::model::mesh::setOrder(2);
-  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  gmsh::write(path);
-  gmsh::clear();
+  gmsh_module().mesh_geo_file(study_data_path("scenes/meshes/organ.geo"), size, order, path);
 }
 
 /// scenes/organ_sag.yaml on `mesh` (an absolute path).

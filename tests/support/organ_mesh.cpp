@@ -4,14 +4,14 @@
 #include <unistd.h>
 
 #include "core/thread_scope.h"
-#include "geometry/gmsh_session.h"
+#include "geometry/gmsh_module.h"
 #include "support/test_support.h"
 
 namespace kerf::testing {
 
 void write_organ_mesh(const std::string& path, double size_left, double size_right, int order) {
   SingleThreadScope serial;  // the same mesh every run
-  ensure_gmsh_initialized();
+  gmsh_module().ensure_initialized();  // one gmsh in the process: the module's, set as kerf sets it
   gmsh::clear();
   gmsh::model::add("organ");
   const double a = 0.035, b = 0.025, c = 0.015, rest = -0.012;

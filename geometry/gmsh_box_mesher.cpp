@@ -1,4 +1,4 @@
-#include "geometry/box_mesher.h"
+#include "geometry/gmsh_meshing.h"
 
 #include <gmsh.h>
 
@@ -9,7 +9,7 @@
 
 namespace kerf {
 
-Mesh mesh_box(const BoxMeshRequest& r) {
+Mesh gmsh_mesh_box(const BoxMeshRequest& r) {
   SingleThreadScope serial;  // gmsh meshes differently from run to run on several threads
   ensure_gmsh_initialized();
   gmsh::clear();

@@ -1,4 +1,4 @@
-#include "geometry/msh_reader.h"
+#include "geometry/gmsh_meshing.h"
 
 #include <gmsh.h>
 #include <poll.h>
@@ -124,7 +124,7 @@ void precheck(const std::string& path) {
 
 }  // namespace
 
-Mesh read_msh(const std::string& path, int dimension, MshOrder order, int* file_order) {
+Mesh gmsh_read_msh(const std::string& path, int dimension, MshOrder order, int* file_order) {
   precheck(path);
   int fds[2];
   KERF_CHECK(::pipe(fds) == 0, "cannot create a pipe to read ", path, ": ", std::strerror(errno));
