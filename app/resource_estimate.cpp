@@ -21,7 +21,12 @@ constexpr double tets_per_volume = 4.5, tets_per_area = 1.0;
 constexpr double tet_vertices_per_volume = 0.63, tet_vertices_per_area = 1.0;
 constexpr double tris_per_area = 2.31, tris_per_length = 0.27;
 constexpr double tri_vertices_per_area = 1.15, tri_vertices_per_length = 0.64;
-constexpr double base_mb = 110.0;                // the libraries (VTK, PETSc, gmsh) and the process
+// The process, and each module a run loads (core/module_loader.h): the
+// resident memory loading it alone added (a program dlopening it,
+// 2026-12-04). A run that loads all three has the 110 MB base fitted before
+// kerf loaded them on demand.
+constexpr double process_mb = 22.0;
+constexpr double gmsh_module_mb = 47.0, petsc_module_mb = 29.0, vtk_module_mb = 12.0;
 constexpr double gmsh_bytes_per_cell = 1500.0;   // gmsh's own structures while it meshes
 constexpr double shape_table_copies = 3.3;       // nodal: tables at nodes and boundary points, pairs, neighbour lists
 // EFG: the Gauss points' table and stresses; its nodes' and boundary points'
@@ -274,6 +279,16 @@ int written_steps(const Scene& scene) {
   return static_cast<int>(std::min(steps / scene.output.vtk_every, 1e9)) + 1;
 }
 
+/// The process and the modules the run loads: gmsh where it makes a mesh,
+/// PETSc for MPI ranks or its solver, VTK for ParaView's files.
+double base_mb(const Scene& scene, const ResourceEstimate& e) {
+  double mb = process_mb;
+  if (e.mesh_cells > 0) mb += gmsh_module_mb;
+  if (e.ranks > 1 || scene.solve.linear_solver == LinearSolverKind::petsc) mb += petsc_module_mb;
+  if (scene.output.vtk_every > 0) mb += vtk_module_mb;
+  return mb;
+}
+
 /// The run's memory beyond the process's base (MB), by how the MPI ranks hold it.
 struct MemoryParts {
   double meshing = 0.0;  // gmsh's structures while it meshes (rank 0's alone under mpirun)
@@ -309,15 +324,16 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
 /// rank its piece; otherwise the mesh is whole on every rank, and so are the
 /// tables but EFG's Gauss points'.
 /// Either way the ranks share the matrix, at parallel_matrix_overhead.
-double memory_mb_per_rank(const Scene& scene, const MemoryParts& m, int ranks) {
-  if (ranks <= 1) return base_mb + m.sum();
+double memory_mb_per_rank(const Scene& scene, const ResourceEstimate& e, const MemoryParts& m, int ranks) {
+  const double base = base_mb(scene, e);
+  if (ranks <= 1) return base + m.sum();
   const double parallel_matrix_overhead =
       scene.solve.petsc_written ? parallel_matrix_overhead_as_written : parallel_matrix_overhead_kerf_options;
   if (body_plan(scene).divided_among_ranks())
-    return base_mb + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
+    return base + std::max(m.meshing + m.mesh, (m.mesh + m.matrix) * parallel_matrix_overhead / ranks + m.whole);
   // EFG: each rank holds its own cells' Gauss points (the nodes' tables, small beside them, are whole).
   const double tables = scene.discretization.method == Method::efg ? m.tables / ranks : m.tables;
-  return base_mb +
+  return base +
          std::max(m.meshing + m.mesh, m.mesh + tables + m.whole + m.matrix * parallel_matrix_overhead / ranks);
 }
 
@@ -345,8 +361,8 @@ ResourceEstimate estimate_resources(const Scene& scene, int ranks) {
   e.output_mb_per_step = (120.0 * e.nodes + 50.0 * e.mesh_cells) / 1048576.0;
   e.output_mb = e.output_mb_per_step * written_steps(scene);
   const MemoryParts parts = memory_parts(scene, e);
-  e.memory_mb = base_mb + parts.sum();
-  e.memory_mb_per_rank = memory_mb_per_rank(scene, parts, ranks);
+  e.memory_mb = base_mb(scene, e) + parts.sum();
+  e.memory_mb_per_rank = memory_mb_per_rank(scene, e, parts, ranks);
   return e;
 }
 

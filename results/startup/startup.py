@@ -1,9 +1,9 @@
 #!/usr/bin/python3
 """Start-up: the wall time of whole `kerf` processes from a cold start of the
 process (page cache warm), beside the floor of starting any process
-(/bin/true) measured in the same run, and "before": the same kerf with the
-libraries it linked until issue 40 (gmsh, PETSc and MPI, VTK's IOXML)
-loaded at its start again (LD_PRELOAD), which is what every run paid.
+(/bin/true) measured in the same run, and "before": kerf as it was before issue 40
+(BEFORE_BUILD, a build of commit b2674c3), linking gmsh, PETSc and MPI, and
+VTK's IOXML at its start.
 2D static plates of about 1,000 nodes: one hanging under its weight by
 nodal integration on a lattice (tests/startup/plate_gravity_2d.yaml: no
 mesh, nothing but CHOLMOD), with and without ParaView output; and
@@ -12,18 +12,18 @@ integration (gmsh meshes the box: FEM's cells, the nodal body's boundary
 cells that carry the traction). Each process is run `repeats` times,
 one at a time; median and min. The modules each run loaded, and what
 loading them cost, are read from its summary.json (timing.modules).
-usage (source tree, idle machine): results/startup/startup.py build [repeats] > results/startup/startup.md"""
+usage (source tree, idle machine):
+  git worktree add /tmp/before b2674c3 && cmake -S /tmp/before -B /tmp/before/build && \
+  cmake --build /tmp/before/build --target kerf -j 2
+  results/startup/startup.py build /tmp/before/build [repeats] > results/startup/startup.md"""
 import json, os, statistics, subprocess, sys, tempfile, time
 
-build = sys.argv[1]
-repeats = int(sys.argv[2]) if len(sys.argv) > 2 else 21
+build, before_build = sys.argv[1:3]
+repeats = int(sys.argv[3]) if len(sys.argv) > 3 else 21
 here = os.path.dirname(os.path.abspath(__file__))
-kerf = f"{build}/cli/kerf"
+kerf, kerf_before = f"{build}/cli/kerf", f"{before_build}/cli/kerf"
 plate = f"{here}/../../scenes/plate_tension_2d.yaml"
 hanging = f"{here}/../../tests/startup/plate_gravity_2d.yaml"
-lib = "/usr/lib/x86_64-linux-gnu"
-linked_before = [f"{lib}/libgmsh.so", "/usr/lib/petsc/lib/libpetsc_real.so", f"{lib}/libmpi.so",
-                 f"{lib}/libvtkIOXML-9.1.so", f"{lib}/libvtkCommonDataModel-9.1.so", f"{lib}/libvtkCommonCore-9.1.so"]
 nodal = ["--set", "discretization.method=nodal", "--set", "discretization.meshless.spacing=0.0022"]
 fem = ["--set", "discretization.fem.size=0.0045"]
 no_vtk = ["--set", "output.vtk=false"]
@@ -48,10 +48,8 @@ def wall(command, environment, out):
     return took
 
 
-def measure(command, runs, preload):
+def measure(command, runs):
     environment = dict(os.environ, OMP_NUM_THREADS="1")
-    if preload:
-        environment["LD_PRELOAD"] = " ".join(linked_before)
     with tempfile.TemporaryDirectory() as out:
         times = [wall(command, environment, out if runs else None) for _ in range(repeats)]
         summary = json.load(open(f"{out}/summary.json")) if runs else None
@@ -61,8 +59,8 @@ def measure(command, runs, preload):
 print("| process | now: median (min) ms | before: median (min) ms | nodes | modules loaded: ms (libraries) |")
 print("|---|---|---|---|---|")
 for label, command, runs in cases:
-    now, summary = measure(command, runs, False)
-    before, _ = measure(command, runs, True) if command[0] == kerf else (None, None)
+    now, summary = measure(command, runs)
+    before, _ = measure([kerf_before] + command[1:], runs) if command[0] == kerf else (None, None)
     nodes = summary["counts"]["nodes"] if summary else ""
     modules = ", ".join(f"{name} {m['load_ms']:.0f} ({m['libraries']})"
                         for name, m in summary["timing"]["modules"].items()) if summary else ""
