@@ -14,6 +14,18 @@ test -x "$work/prefix/bin/kerf" || { echo "no bin/kerf in the prefix"; exit 1; }
 # The Python package from the prefix alone (not the build tree's).
 (cd "$work" && PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 -c \
   "import kerf, sys; assert kerf.__file__.startswith('$work/prefix/'), kerf.__file__; print('python: kerf', kerf.__version__)")
+# Its modules (gmsh, VTK) from the prefix too, when a run needs them.
+(cd "$work" && PYTHONPATH="$work/prefix/lib/python3/dist-packages" /usr/bin/python3 - \
+  "$source_dir/scenes/plate_tension_2d.yaml" "$work/python_out" "$work/prefix/" <<'PY'
+import kerf, sys
+kerf.run(sys.argv[1], out=sys.argv[2])
+maps = open("/proc/self/maps").read().splitlines()
+for module in ("libkerf_gmsh.so", "libkerf_vtk.so"):
+    paths = {line.split()[-1] for line in maps if line.endswith(module)}
+    assert paths and all(p.startswith(sys.argv[3]) for p in paths), f"{module} loaded from {paths}"
+print("python: the modules from the prefix")
+PY
+)
 # Only the public headers and what they include are installed (cmake/public_headers.cmake):
 # a body's own header is not there, and every installed header compiles from the prefix alone.
 headers="$work/prefix/include/kerf"
