@@ -59,8 +59,9 @@ inline std::vector<LoadedModule> loaded_modules() {
 }
 
 /// The table libkerf_<name>.so's `kerf_<name>_module` gives, loading the
-/// module now (call once per process: the dynamic loader keeps it). `global`: its libraries' symbols
-/// are made visible to what they load themselves (MPI's plugins need it).
+/// module now (call once per process: the dynamic loader keeps it).
+/// `global`: its libraries' symbols are made visible to what they load
+/// themselves (MPI's plugins need it).
 template <class Table>
 const Table& load_module(const std::string& name, const std::string& needed_for, bool global = false) {
   const std::string file = "libkerf_" + name + ".so";
