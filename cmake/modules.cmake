@@ -18,7 +18,10 @@ function(kerf_add_module name)
   set_target_properties(${target} PROPERTIES OUTPUT_NAME kerf_${name} PREFIX lib
     LIBRARY_OUTPUT_DIRECTORY ${KERF_MODULE_DIR} CXX_VISIBILITY_PRESET hidden VISIBILITY_INLINES_HIDDEN ON)
   target_link_libraries(${target} PRIVATE ${MODULE_LINK})
-  target_link_options(${target} PRIVATE -Wl,--exclude-libs,ALL -Wl,--no-undefined)
+  target_link_options(${target} PRIVATE -Wl,--exclude-libs,ALL)
+  if(NOT KERF_FUZZ)  # clang's sanitizer runtime is the program's, not the module's: its symbols resolve at load
+    target_link_options(${target} PRIVATE -Wl,--no-undefined)
+  endif()
   add_dependencies(kerf_modules ${target})
   install(TARGETS ${target} LIBRARY DESTINATION ${KERF_INSTALLED_MODULE_DIR})
 endfunction()
