@@ -1,7 +1,8 @@
 #pragma once
 // How many threads kerf runs and how they wait, set before libgomp loads
-// (it reads its environment once, when the library is loaded): the program
-// sets the variables and starts itself again, once.
+// (it reads its environment once, when the library is loaded): `kerf` sets
+// the variables and then loads the program, which links libgomp
+// (cli/launcher.cpp); another program sets them and starts itself again, once.
 //
 // - Threads: the cores this process is given, never more: its CPU affinity
 //   (taskset, mpirun's binding), its cgroup's CPU quota (containers, CI), and
@@ -109,15 +110,16 @@ inline std::string thread_policy_field(const std::string& field) {
   return text.substr(begin, text.find('|', begin) - begin);
 }
 
-/// Sets the thread count, limit and wait policy (unless set) and starts the
-/// program again with them; returns at once when they are in place.
-inline void apply_thread_policy(char** argv) {
+/// Sets the thread count, limit and wait policy in the environment (unless
+/// set); false when they are in place already (set by the user, or by this
+/// very process).
+inline bool set_thread_policy_environment() {
   using namespace thread_policy_detail;
   const char* previous = std::getenv("KERF_THREAD_POLICY");
   const std::string marker = previous ? previous : "";
   const std::string pid = std::to_string(::getpid());
-  // Set by this very process before it started itself again, or by the user: done.
-  if (previous && (marker.rfind(pid + "|", 0) == 0 || marker.find('|') == std::string::npos)) return;
+  // Set by this very process (before it started itself again), or by the user: done.
+  if (previous && (marker.rfind(pid + "|", 0) == 0 || marker.find('|') == std::string::npos)) return false;
   const CoreBudget budget = cores_given();
   const std::string cores = std::to_string(budget.cores);
   std::string record = pid + "|";
@@ -130,7 +132,15 @@ inline void apply_thread_policy(char** argv) {
   set("OMP_NUM_THREADS", cores);
   if (!std::getenv("GOMP_SPINCOUNT")) set("OMP_WAIT_POLICY", "passive");
   ::setenv("KERF_THREAD_POLICY", (record + "limited_by=" + budget.limited_by + "|").c_str(), 1);
-  ::execv("/proc/self/exe", argv);
+  return true;
+}
+
+/// For a program that links libgomp (loaded, and its variables read, before
+/// main): sets them and starts the program again with them; returns at once
+/// when they are in place. `kerf` itself sets them before it loads libgomp
+/// (cli/launcher.cpp) and starts once.
+inline void apply_thread_policy(char** argv) {
+  if (set_thread_policy_environment()) ::execv("/proc/self/exe", argv);
   // If the exec fails, carry on with the library's defaults.
 }
 
