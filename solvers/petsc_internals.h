@@ -1,6 +1,8 @@
 #pragma once
 // Inside the PETSc module only (solvers/petsc_module.h is the door): what its
 // table gives, over PETSc.
+#include <petscvec.h>
+
 #include "solvers/petsc_module.h"
 
 namespace kerf {
@@ -12,6 +14,8 @@ void start_petsc();
 RankShare petsc_ranks();
 void petsc_barrier();
 void petsc_abort(int code);
+/// `from` scattered forward into `to`, whose first `size` entries on this rank are then copied into `out`.
+void petsc_scatter_into(VecScatter scatter, Vec from, Vec to, Index size, Vector& out);
 
 std::vector<double> petsc_send_from_first_rank(std::vector<double> values);
 std::vector<double> petsc_send_parts_from_first_rank(std::vector<std::vector<double>> parts);

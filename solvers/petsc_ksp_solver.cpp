@@ -137,12 +137,7 @@ class PetscSolver final : public LinearSolver {
     if (reason < 0)
       return LinearSolverStatus::failure(std::string("petsc: KSP diverged (") + KSPConvergedReasons[reason] +
                                          ") after " + std::to_string(iterations) + " iterations");
-    petsc_check(VecScatterBegin(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    petsc_check(VecScatterEnd(gather_, x_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-    const PetscScalar* xa = nullptr;
-    petsc_check(VecGetArrayRead(all_, &xa), "VecGetArrayRead");
-    x = Eigen::Map<const Vector>(xa, b.size());
-    petsc_check(VecRestoreArrayRead(all_, &xa), "VecRestoreArrayRead");
+    petsc_scatter_into(gather_, x_, all_, b.size(), x);
     return LinearSolverStatus::success();
   }
   int last_iterations() const override { return iterations_; }

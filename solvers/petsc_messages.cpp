@@ -52,6 +52,15 @@ std::vector<double> concatenated(std::vector<double>& mine) {
 
 }  // namespace
 
+void petsc_scatter_into(VecScatter scatter, Vec from, Vec to, Index size, Vector& out) {
+  petsc_check(VecScatterBegin(scatter, from, to, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+  petsc_check(VecScatterEnd(scatter, from, to, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+  const PetscScalar* values = nullptr;
+  petsc_check(VecGetArrayRead(to, &values), "VecGetArrayRead");
+  out = Eigen::Map<const Vector>(values, size);
+  petsc_check(VecRestoreArrayRead(to, &values), "VecRestoreArrayRead");
+}
+
 std::vector<double> petsc_send_from_first_rank(std::vector<double> values) {
   start_petsc();
   PetscMPIInt rank = 0;

@@ -30,12 +30,7 @@ class PetscRankSum final : public RankSum::Engine {
                 "VecSetValues");
     petsc_check(VecAssemblyBegin(owned_), "VecAssemblyBegin");
     petsc_check(VecAssemblyEnd(owned_), "VecAssemblyEnd");
-    petsc_check(VecScatterBegin(to_all_, owned_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
-    petsc_check(VecScatterEnd(to_all_, owned_, all_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
-    const PetscScalar* whole = nullptr;
-    petsc_check(VecGetArrayRead(all_, &whole), "VecGetArrayRead");
-    v = Eigen::Map<const Vector>(whole, v.size());
-    petsc_check(VecRestoreArrayRead(all_, &whole), "VecRestoreArrayRead");
+    petsc_scatter_into(to_all_, owned_, all_, v.size(), v);
   }
 
  private:
