@@ -36,16 +36,25 @@ double quartic_weight_value(const Vec3& x, const Vec3& node, double radius) {
   return r >= 1.0 ? 0.0 : quartic(r);
 }
 
-WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian) {
-  WeightValue w;
+WeightWithGradient quartic_weight_with_gradient(const Vec3& x, const Vec3& node, double radius) {
+  WeightWithGradient w;
   const Vec3 s = x - node;
-  const double distance = s.norm(), r = distance / radius;
+  const double r = s.norm() / radius;
   if (r >= 1.0) return w;
-  const double a = 1.0 - r, d2 = radius * radius;
+  const double a = 1.0 - r;
   w.value = quartic(r);
   // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
-  w.gradient = -12.0 * a * a * s / d2;
-  if (!with_hessian) return w;
+  w.gradient = -12.0 * a * a * s / (radius * radius);
+  return w;
+}
+
+WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian) {
+  const WeightWithGradient first = quartic_weight_with_gradient(x, node, radius);
+  WeightValue w{first.value, first.gradient, Mat3::Zero()};
+  const Vec3 s = x - node;
+  const double distance = s.norm(), r = distance / radius;
+  if (!with_hessian || r >= 1.0) return w;
+  const double a = 1.0 - r, d2 = radius * radius;
   w.hessian = -12.0 / d2 * a * a * Mat3::Identity();
   if (distance > 0.0) w.hessian += 24.0 / d2 * a * s * s.transpose() / (distance * radius);
   return w;

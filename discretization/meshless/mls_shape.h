@@ -19,6 +19,12 @@ struct WeightValue {
   Vec3 gradient = Vec3::Zero();
   Mat3 hessian = Mat3::Zero();
 };
+/// The value and gradient alone (the linear kernel's weights, 32 bytes).
+struct WeightWithGradient {
+  double value = 0.0;
+  Vec3 gradient = Vec3::Zero();
+};
+WeightWithGradient quartic_weight_with_gradient(const Vec3& x, const Vec3& node, double radius);
 /// Without `with_hessian`, the Hessian is left zero (shape functions without second derivatives).
 WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian = true);
 /// Its value alone (no derivatives), where only the value is wanted.

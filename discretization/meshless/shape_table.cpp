@@ -22,6 +22,13 @@ bool same_factors(const ShapeTable& t, Index p, const PointShapes& scratch) {
 
 enum class Filled { row, unchanged, singular };
 
+// A cut can leave a point's side nodes thin along some direction: the linear
+// fields they still tell apart are kept, and no steep gradient. Nodes that
+// thin make the moment matrix's condition at least 1 / (1e-2 of their largest
+// variance, itself below 0.1 in the scaled basis), so a better conditioned
+// full basis (most points at a cut: 10 to 110) is kept without looking at the spread.
+constexpr double surely_spread = 300.0;
+
 /// Fills row p of the table (values, gradients, condition, weight factors);
 /// with `only_if_changed`, leaves a row whose factors are unchanged as it is.
 Filled fill_row(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, const Vec3& point, Index p,
@@ -103,6 +110,7 @@ void PointShapes::look_up_factors(const Vec3& point, std::span<const Index> near
 
 bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const Vec3& point,
                                      std::span<const Index> near, bool hessians) {
+  if (basis == MlsBasis::linear && !hessians) return evaluate_linear(nodes, point, near);
   x_.clear();
   w_.clear();
   weight_factor.assign(near.size(), 1.0);
@@ -128,14 +136,42 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
       std::any_of(weight_factor.begin(), weight_factor.end(), [](double g) { return g < 1.0; });
   // Without a cut a singular matrix is the support's fault, and is refused.
   if (!cut_hides_nodes) return mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape);
-  // A cut can leave the point's side nodes thin along some direction: the
-  // linear fields they still tell apart are kept, and no steep gradient.
-  // Nodes that thin make the moment matrix's condition at least 1 / (1e-2
-  // of their largest variance, itself below 0.1 in the scaled basis), so a
-  // better conditioned full basis (most points at a cut: 10 to 110) is kept
-  // without looking at the spread.
-  constexpr double surely_spread = 300.0;
-  const bool full = mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape);
+  return keep_spanned_directions(dim, basis, point, scale, hessians,
+                                 mls_shape_functions(dim, basis, point, x_, w_, scale, hessians, shape));
+}
+
+bool PointShapes::evaluate_linear(const NodeSet& nodes, const Vec3& point, std::span<const Index> near) {
+  const std::size_t n = near.size();
+  x_.resize(n);
+  linear_w_.resize(n);
+  weight_factor.assign(n, 1.0);
+  double scale = 0.0;
+  bool cut_hides_nodes = false;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Index I = near[k];
+    x_[k] = nodes.positions[I];
+    scale = std::max(scale, nodes.support[I]);
+    WeightWithGradient& wI = linear_w_[k];
+    wI = quartic_weight_with_gradient(point, nodes.positions[I], nodes.support[I]);
+    const WeightFactor& g = factors_[k];
+    if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
+      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;  // (w g)' = w' g + w g'
+      wI.value *= g.value;
+      weight_factor[k] = g.value;
+      cut_hides_nodes |= g.value < 1.0;
+    }
+  }
+  const int dim = nodes.dimension;
+  const bool full = mls_linear_shape_functions(dim, point, x_, linear_w_, scale, shape);
+  // Without a cut a singular matrix is the support's fault, and is refused.
+  if (!cut_hides_nodes || (full && shape.condition < surely_spread)) return full;
+  w_.resize(n);
+  for (std::size_t k = 0; k < n; ++k) w_[k] = WeightValue{linear_w_[k].value, linear_w_[k].gradient, Mat3::Zero()};
+  return keep_spanned_directions(dim, MlsBasis::linear, point, scale, false, full);
+}
+
+bool PointShapes::keep_spanned_directions(int dim, MlsBasis basis, const Vec3& point, double scale, bool hessians,
+                                          bool full) {
   if (full && shape.condition < surely_spread) return true;
   const NodeSpread spread = node_spread(dim, point, x_, w_, scale);
   if (full && spread.directions == dim) return true;

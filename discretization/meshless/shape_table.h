@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "discretization/enrichment/enrichment_rule.h"
+#include "discretization/meshless/mls_linear.h"
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
 #include "geometry/support_index.h"
@@ -55,8 +56,15 @@ class PointShapes {
   std::vector<double> weight_factor;
 
  private:
+  /// evaluate_looked_up for a linear basis without Hessians (mls_linear_shape_functions).
+  bool evaluate_linear(const NodeSet& nodes, const Vec3& point, std::span<const Index> near);
+  /// The full basis failed or is ill-conditioned where a cut hides nodes: the
+  /// linear fields the nodes on the point's side still tell apart (x_, w_ filled).
+  bool keep_spanned_directions(int dim, MlsBasis basis, const Vec3& point, double scale, bool hessians, bool full);
+
   std::vector<Vec3> x_;
   std::vector<WeightValue> w_;
+  std::vector<WeightWithGradient> linear_w_;
   std::vector<WeightFactor> factors_;
 };
 
