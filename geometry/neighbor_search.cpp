@@ -29,14 +29,14 @@ PointIndex::~PointIndex() = default;
 
 const std::vector<Vec3>& PointIndex::points() const { return tree_->cloud.points; }
 
-void PointIndex::within(const Vec3& x, double radius, std::vector<Index>& out) const {
+void PointIndex::within(const Vec3& x, double radius, std::vector<Index>& out, bool in_order) const {
   thread_local std::vector<std::pair<std::size_t, double>> matches;
   matches.clear();
   nanoflann::SearchParams params(32, 0.0f, false);
   tree_->tree.radiusSearch(x.data(), radius * radius, matches, params);
   out.clear();
   for (const auto& m : matches) out.push_back(static_cast<Index>(m.first));
-  std::sort(out.begin(), out.end());
+  if (in_order) std::sort(out.begin(), out.end());
 }
 
 NeighborLists transpose_slots(const NeighborLists& lists, Index count) {

@@ -36,8 +36,9 @@ class PointIndex {
   PointIndex(const PointIndex&) = delete;
   PointIndex& operator=(const PointIndex&) = delete;
 
-  /// The points strictly closer than `radius` to x, in increasing index order.
-  void within(const Vec3& x, double radius, std::vector<Index>& out) const;
+  /// The points strictly closer than `radius` to x, in increasing index order
+  /// (or, without `in_order`, in the tree's order: a caller that sorts later skips a sort).
+  void within(const Vec3& x, double radius, std::vector<Index>& out, bool in_order = true) const;
   const std::vector<Vec3>& points() const;
 
  private:

@@ -34,17 +34,17 @@ SupportIndex::SupportIndex(std::vector<Vec3> positions, std::vector<double> radi
 
 SupportIndex::~SupportIndex() = default;
 
-void SupportIndex::reaching(const Vec3& x, double extra, std::vector<Index>& out) const {
+void SupportIndex::reaching(const Vec3& x, double extra, std::vector<Index>& out, bool in_order) const {
   thread_local std::vector<Index> local;
   out.clear();
   for (const Group& g : groups_) {
-    g.index->within(x, g.largest + extra, local);
+    g.index->within(x, g.largest + extra, local, in_order);
     for (Index k : local) {
       const Index I = g.node[k];
       if ((x - positions_[I]).norm() < radius_[I] + extra) out.push_back(I);
     }
   }
-  if (groups_.size() > 1) std::sort(out.begin(), out.end());
+  if (in_order && groups_.size() > 1) std::sort(out.begin(), out.end());
 }
 
 void SupportIndex::within(const Vec3& x, double distance, std::vector<Index>& out) const {

@@ -22,8 +22,8 @@ class SupportIndex {
   SupportIndex& operator=(const SupportIndex&) = delete;
 
   /// The nodes I with |x - x_I| < radius[I] + extra, in increasing order
-  /// (extra = 0: the supports covering x).
-  void reaching(const Vec3& x, double extra, std::vector<Index>& out) const;
+  /// (extra = 0: the supports covering x); without `in_order`, in any order.
+  void reaching(const Vec3& x, double extra, std::vector<Index>& out, bool in_order = true) const;
   /// The nodes strictly closer than `distance` to x, in increasing order.
   void within(const Vec3& x, double distance, std::vector<Index>& out) const;
   const std::vector<Vec3>& positions() const { return positions_; }

@@ -64,9 +64,12 @@ std::vector<Index> CutWeights::reached_by(const CutSurface& surface, Index first
     const CutPiece& piece = surface.pieces[k];
     double radius = 0.0;
     for (int c = 0; c < surface.dimension; ++c) radius = std::max(radius, (piece.corner[c] - piece.centre).norm());
-    index_.reaching(piece.centre, radius, candidates);
-    for (Index I : candidates)
+    index_.reaching(piece.centre, radius, candidates, false);  // sorted below
+    for (Index I : candidates) {
+      // No nearer the piece than its plane (line): most of a large piece's candidates stop here.
+      if (std::abs(piece.normal.dot(nodes_[I] - piece.corner[0])) >= support_[I]) continue;
       if (distance_to_cut(surface, k, k + 1, nodes_[I]) < support_[I]) out.push_back(I);
+    }
   }
   std::sort(out.begin(), out.end());
   out.erase(std::unique(out.begin(), out.end()), out.end());
@@ -93,7 +96,8 @@ std::unique_ptr<EnrichmentRule> CutWeights::make_rule(Index cut, std::span<const
 }
 
 std::vector<Index> CutWeights::advance_to(double t) {
-  std::vector<Index> changed;
+  std::vector<Index> changed, everywhere;
+  std::vector<Index> grown;
   for (Index c = 0; c < cut_count(); ++c) {
     Part& part = parts_[c];
     const CutSurface& surface = cuts_->surface(c);
@@ -103,17 +107,41 @@ std::vector<Index> CutWeights::advance_to(double t) {
     part.pieces = now;
     const std::vector<Index> reached = reached_by(surface, before, now);
     if (auto* grid = dynamic_cast<GridRule*>(part.rule.get())) {
-      grid->grow(surface, now, reached, changed);
+      grid->grow(surface, now, reached, changed, &everywhere);
+      grown.push_back(c);
       continue;
     }
     // First pieces, or a baseline rule: rebuilt whole. A new piece changes
     // only the factors of the nodes it reaches (their view of the cut).
     part.rule = make_rule(c, reached);
     changed.insert(changed.end(), reached.begin(), reached.end());
+    everywhere.insert(everywhere.end(), reached.begin(), reached.end());
   }
   std::sort(changed.begin(), changed.end());
   changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+  if (!changed.empty()) remember_growth(std::move(everywhere), std::move(grown));
   return changed;
+}
+
+void CutWeights::remember_growth(std::vector<Index> everywhere, std::vector<Index> grown) {
+  if (changed_everywhere_.empty()) changed_everywhere_.assign(nodes_.size(), 0);
+  for (Index I : changed_everywhere_list_) changed_everywhere_[I] = 0;
+  for (Index I : everywhere) changed_everywhere_[I] = 1;
+  changed_everywhere_list_ = std::move(everywhere);
+  grown_grids_ = std::move(grown);
+}
+
+bool CutWeights::growth_may_change(const Vec3& x, std::span<const Index> near) const {
+  if (changed_everywhere_.empty()) return true;  // no growth yet
+  for (Index I : near)
+    if (changed_everywhere_[I]) return true;
+  for (Index c : grown_grids_) {
+    const auto& rule = static_cast<const GridRule&>(*parts_[c].rule);
+    if (std::any_of(near.begin(), near.end(), [&](Index I) { return rule.enriches(I); }) &&
+        rule.phi_may_have_changed(x))
+      return true;
+  }
+  return false;
 }
 
 const EnrichmentGrid* CutWeights::grid(Index cut) const {

@@ -35,6 +35,11 @@ class CutWeights final : public EnrichmentRule {
   /// Brings the cuts to time t (never earlier than before); returns the nodes
   /// whose g_I changed, sorted and unique (empty when no piece appeared).
   std::vector<Index> advance_to(double t);
+  /// May the last advance_to that changed something have changed the factors
+  /// at x of the nodes `near`? False when none of them changed over its whole
+  /// support (newly enriched, side turned, a rebuilt rule's) and every grown
+  /// grid kept phi at x: the shape functions there stay as they were.
+  bool growth_may_change(const Vec3& x, std::span<const Index> near) const;
 
   /// The Enrichment Grid of cut c (null for other rules or before its first piece).
   const EnrichmentGrid* grid(Index cut) const;
@@ -51,9 +56,16 @@ class CutWeights final : public EnrichmentRule {
   /// The nodes whose support reaches pieces [first, last) of a surface, sorted.
   std::vector<Index> reached_by(const CutSurface& surface, Index first, Index last) const;
   std::unique_ptr<EnrichmentRule> make_rule(Index cut, std::span<const Index> reached) const;
+  /// Keeps what growth_may_change asks about the growth advance_to just made.
+  void remember_growth(std::vector<Index> everywhere, std::vector<Index> grown);
 
   SharedCuts cuts_;
   std::vector<Part> parts_;  // one per cut
+  // The last growth: the nodes whose factor changed over their whole support
+  // (flags and list), and the cuts whose grid grew (their phi changed near their columns).
+  std::vector<char> changed_everywhere_;
+  std::vector<Index> changed_everywhere_list_;
+  std::vector<Index> grown_grids_;
   const SupportIndex& index_;
   const std::vector<Vec3>& nodes_;      // index_'s
   const std::vector<double>& support_;  // index_'s

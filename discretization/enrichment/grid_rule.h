@@ -35,7 +35,14 @@ class GridRule final : public EnrichmentRule {
   /// node when the cut turned and the lattice with it).
   /// `cut`: the cut as it stands now, which may hold pieces this rule's copy
   /// lacks (a cut fed at run time); its earlier pieces are this rule's.
-  void grow(const CutSurface& cut, Index pieces, std::span<const Index> reached, std::vector<Index>& changed);
+  /// `everywhere` (when given) gets the changed nodes whose g_I changed over
+  /// their whole support: the newly enriched, and those whose side turned.
+  void grow(const CutSurface& cut, Index pieces, std::span<const Index> reached, std::vector<Index>& changed,
+            std::vector<Index>* everywhere = nullptr);
+  /// Since the last grow, may phi have changed at x (then so did the factor
+  /// at x of every node enriched before)? False where every lattice column
+  /// the lookup at x reads kept its phi.
+  bool phi_may_have_changed(const Vec3& x) const;
 
   const EnrichmentGrid& grid() const { return *grid_; }
   Index enriched_count() const { return static_cast<Index>(enriched_list_.size()); }
@@ -43,6 +50,8 @@ class GridRule final : public EnrichmentRule {
  private:
   PhiValue phi(const Vec3& x) const;
   void enrich(Index node);
+  /// sigma_I from the grid as it stands.
+  signed char node_side(Index node) const;
 
   CutSurface cut_;  // the grid points into it: this object does not move
   double spacing_, padding_;
@@ -53,6 +62,8 @@ class GridRule final : public EnrichmentRule {
   std::vector<char> enriched_;
   std::vector<Index> enriched_list_;
   std::vector<signed char> side_;  // sigma_I
+  std::vector<char> grown_columns_;  // the lattice columns the last grow changed (dilated by one)
+  bool lattice_moved_ = false;       // the last grow turned an interpolated lattice: phi changed everywhere
 };
 
 }  // namespace kerf

@@ -163,7 +163,8 @@ CutUpdate EfgBody::update_for_cuts(double t) {
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
   update.changed_nodes = changed;
-  const std::vector<Index> rows = points_.points_holding(changed);
+  const std::vector<Index> rows =
+      domain_.rows_the_growth_may_change(points_.shapes(), points_.positions(), points_.points_holding(changed));
   std::array<double, 2> counts{
       static_cast<double>(
           domain_.refresh_rows(points_.shapes_in_place(), points_.positions(), rows, "the quadrature point").size()),

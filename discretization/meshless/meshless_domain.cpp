@@ -188,6 +188,16 @@ std::vector<Index> MeshlessDomain::refresh_rows(ShapeTable& table, std::span<con
   return refresh_shape_rows(table, nodes_, basis_, points, rows, *enrichment_, what, error_context_, mls_remedy());
 }
 
+std::vector<Index> MeshlessDomain::rows_the_growth_may_change(const ShapeTable& table, std::span<const Vec3> points,
+                                                              std::span<const Index> rows) const {
+  if (!enrichment_) return {};
+  std::vector<Index> out;
+  out.reserve(rows.size());
+  for (Index p : rows)
+    if (enrichment_->growth_may_change(points[p], table.neighbours.of(p))) out.push_back(p);
+  return out;
+}
+
 std::string MeshlessDomain::mls_remedy() const {
   return enrichment_ ? "expected a larger support, a linear basis, or more nodes there (a cut hides the nodes on "
                        "its other side)"
@@ -208,8 +218,9 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
     smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());
   } else {
     // Only the rows whose factors changed: phi moved at their point.
-    touched = refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions, touched, *enrichment_, "the node",
-                                 error_context_, mls_remedy());
+    touched = refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions,
+                                 rows_the_growth_may_change(at_nodes_, nodes_.positions, touched), *enrichment_,
+                                 "the node", error_context_, mls_remedy());
   }
   if (rows) *rows = std::move(touched);
   if (growing_) {  // the boundary terms wait for update_boundary_terms (costly: only VCI needs them each growth)

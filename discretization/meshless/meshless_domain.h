@@ -115,6 +115,11 @@ class MeshlessDomain {
   /// rows whose factors had changed, hence recomputed.
   std::vector<Index> refresh_rows(ShapeTable& table, std::span<const Vec3> points, std::span<const Index> rows,
                                   const std::string& what) const;
+  /// Of `rows` (of a table at `points`, holding a node the latest growth
+  /// changed), those whose factors it may have changed: where the growth left
+  /// phi as it was and enriched no new node of the row, the row stays as it is.
+  std::vector<Index> rows_the_growth_may_change(const ShapeTable& table, std::span<const Vec3> points,
+                                                std::span<const Index> rows) const;
   /// The shape table at the nodes themselves (nodal integration points, output);
   /// with meshless.gradient: smoothed (nodal), its gradients are the cells' means.
   const ShapeTable& at_nodes() const { return at_nodes_; }

@@ -1,7 +1,9 @@
 // The Enrichment Grid as a data structure: its interpolated phi converges to
 // the exact one away from the faces and keeps the jump across them sharp; a growing cut reports every node whose
 // weight factor changed (each node it does not report keeps its factor, to
-// round-off, at points all over its support), and after any number of
+// round-off, at points all over its support), every point where a factor
+// changed is one the growth says phi may have changed at (or the node's
+// whole support changed), and after any number of
 // growths the factors equal those of a grid built with the whole cut at once.
 #include <gtest/gtest.h>
 
@@ -87,18 +89,29 @@ void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool
     std::vector<Index> new_reach;
     for (std::size_t I = 0; I < c.nodes.size(); ++I)
       if (distance_to_cut(cut, pieces - 1, pieces, c.nodes[I]) < c.support[I]) new_reach.push_back(static_cast<Index>(I));
-    std::vector<Index> changed;
-    growing.grow(cut, pieces, new_reach, changed);
-    std::vector<char> reported(c.nodes.size(), 0);
+    std::vector<Index> changed, everywhere;
+    growing.grow(cut, pieces, new_reach, changed, &everywhere);
+    std::vector<char> reported(c.nodes.size(), 0), whole_support(c.nodes.size(), 0);
     for (Index I : changed) reported[I] = 1;
+    for (Index I : everywhere) {
+      EXPECT_TRUE(reported[I]) << "node " << I << " changed everywhere but not reported";
+      whole_support[I] = 1;
+    }
     const GridRule fresh(cut, pieces, spacing, lookup, c.nodes, c.support, reached(cut, pieces, c));
-    int kept = 0;
+    int kept = 0, unchanged_points = 0;
     for (std::size_t I = 0; I < c.nodes.size(); ++I) {
       const Index node = static_cast<Index>(I);
       ASSERT_EQ(growing.enriches(node), fresh.enriches(node)) << "node " << I << ", " << pieces << " pieces";
       for (std::size_t s = 0; s < samples[I].size(); ++s) {
         const double now = growing.factor(node, samples[I][s]).value;
         EXPECT_NEAR(now, fresh.factor(node, samples[I][s]).value, 1e-12) << "node " << I;
+        // Where the factor changed, the growth says so: the node's whole support, or phi at the point.
+        const bool may_change = whole_support[I] || growing.phi_may_have_changed(samples[I][s]);
+        if (std::abs(now - before[I][s]) > 1e-12) {
+          EXPECT_TRUE(may_change) << "node " << I << " changed at a point the growth calls unchanged, " << pieces
+                                  << " pieces";
+        }
+        unchanged_points += !may_change;
         if (!reported[I]) {
           EXPECT_NEAR(now, before[I][s], 1e-12) << "node " << I << " changed unreported, " << pieces << " pieces";
           kept += growing.enriches(node);
@@ -108,6 +121,7 @@ void check_growth(const CutSurface& cut, const Cloud& c, GridLookup lookup, bool
     EXPECT_FALSE(changed.empty());
     if (local) {
       EXPECT_GT(kept, 0) << "every enriched node was reported: the update is not local";
+      EXPECT_GT(unchanged_points, 0) << "phi may have changed everywhere: the rows' filter is not local";
     }
   }
 }
