@@ -4,9 +4,9 @@
 // for that case alone (the general mls_shape_functions serves the rest): one
 // pass over the nodes accumulates the moment matrix and its derivatives (upper
 // triangles), a Cholesky factor solves, and the condition number comes from
-// the eigenvalues by Jacobi rotations (accurate for the small ones of a
-// positive definite matrix; no eigenvectors, which only the general path's
-// solve needs). The same shape functions as mls_shape_functions, to rounding.
+// the eigenvalues by Jacobi rotations (no eigenvectors: only the general
+// path's solve needs them). The same shape functions and condition numbers as
+// mls_shape_functions, to the system's condition times round-off (tested).
 #include <span>
 
 #include "discretization/meshless/mls_shape.h"

@@ -61,7 +61,7 @@ namespace {
 /// every node pair is computed: the block is not symmetric.
 template <int DIM>
 void add_material_block_fixed(const double* g, const double* test, Index n, const Mat9& dPdF, double scale,
-                              const Index* place, Index size, double* block) {
+                              const Index* place, Index size, double* block, bool upper_half) {
   using Grad = Eigen::Matrix<double, DIM, 1>;
   using Block = Eigen::Matrix<double, DIM, DIM>;
   for (Index b = 0; b < n; ++b) {
@@ -84,9 +84,14 @@ void add_material_block_fixed(const double* g, const double* test, Index n, cons
       Block K;  // K(i, k) = sum_j T[k](i, j) ghat_a(j)
       for (int k = 0; k < DIM; ++k) K.col(k) = T[k] * ga;
       const Index row = DIM * place[a];
+      if (upper_half && row > column) {  // below the diagonal: its mirror image above
+        for (int k = 0; k < DIM; ++k)
+          for (int i = 0; i < DIM; ++i) block[(column + k) * size + row + i] += K(i, k);
+        continue;
+      }
       for (int i = 0; i < DIM; ++i)
         for (int k = 0; k < DIM; ++k) block[(row + i) * size + column + k] += K(i, k);
-      if (symmetric && a < b)
+      if (symmetric && a < b && !upper_half)
         for (int k = 0; k < DIM; ++k)
           for (int i = 0; i < DIM; ++i) block[(column + k) * size + row + i] += K(i, k);
     }
@@ -97,7 +102,8 @@ void add_material_block_fixed(const double* g, const double* test, Index n, cons
 
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
                         std::span<const Index> place, Index block_nodes, std::vector<double>& block,
-                        std::span<const double> offsets) {
+                        std::span<const double> offsets, bool upper_half) {
+  KERF_CHECK(!upper_half || offsets.empty(), "internal: a Petrov-Galerkin block is not symmetric: no upper half");
   const int dim = table.dimension;
   auto near = table.neighbours.of(point);
   const Index n = static_cast<Index>(near.size()), size = block_nodes * dim;
@@ -113,9 +119,17 @@ void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, 
     test = corrected.data();
   }
   if (dim == 3)
-    add_material_block_fixed<3>(g, test, n, dPdF, scale, place.data(), size, block.data());
+    add_material_block_fixed<3>(g, test, n, dPdF, scale, place.data(), size, block.data(), upper_half);
   else
-    add_material_block_fixed<2>(g, test, n, dPdF, scale, place.data(), size, block.data());
+    add_material_block_fixed<2>(g, test, n, dPdF, scale, place.data(), size, block.data(), upper_half);
+}
+
+void mirror_upper_half(Index block_nodes, int dim, std::vector<double>& block) {
+  const Index size = block_nodes * dim;
+  for (Index r = dim; r < size; ++r) {
+    const Index below = (r / dim) * dim;  // the columns of the node blocks left of r's diagonal block
+    for (Index c = 0; c < below; ++c) block[r * size + c] = block[c * size + r];
+  }
 }
 
 namespace {
@@ -193,7 +207,7 @@ namespace {
 /// terms are written in).
 class GroupBlock {
  public:
-  void assemble(const ShapeTable& table, Index begin, Index end, const PointBlockTerm& term) {
+  void assemble(const ShapeTable& table, Index begin, Index end, const PointBlockTerm& term, bool upper_half) {
     const int dim = table.dimension;
     nodes_.clear();
     for (Index p = begin; p < end; ++p) {
@@ -215,6 +229,7 @@ class GroupBlock {
           place_.push_back(static_cast<Index>(std::lower_bound(nodes_.begin(), nodes_.end(), J) - nodes_.begin()));
       term(p, place_, count, block_);
     }
+    if (upper_half) mirror_upper_half(count, dim, block_);
     dofs_.clear();
     for (Index J : nodes_)
       for (int i = 0; i < dim; ++i) dofs_.push_back(dim * J + i);
@@ -230,7 +245,7 @@ class GroupBlock {
 }  // namespace
 
 void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedule, const PointBlockTerm& term,
-                           const BlockSink& sink, const BlockExtra& extra) {
+                           const BlockSink& sink, const BlockExtra& extra, bool upper_half) {
   KERF_CHECK(!extra || schedule.group_size == 1, "internal: a method's extra terms need one point a group");
   const Index P = table.point_count();
   ParallelFailure failure;
@@ -244,7 +259,7 @@ void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedul
           // No other thread writes these dofs now: this colour's cubes share no node.
           for (Index first : colour[c]) {
             const auto [begin, end] = group_points(first, schedule.group_size, P);
-            group.assemble(table, begin, end, term);
+            group.assemble(table, begin, end, term, upper_half);
             if (extra) extra(begin, group.block());
             sink(group.dofs(), group.block());
           }
@@ -262,9 +277,10 @@ void assemble_material_blocks(const ShapeTable& table, const PointSchedule& sche
     Mat3 P;
     Mat9 dPdF;
     law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
-    add_material_block(table, p, dPdF, weights[p], place, block_nodes, block, offsets);
+    add_material_block(table, p, dPdF, weights[p], place, block_nodes, block, offsets, offsets.empty());
   };
-  assemble_point_blocks(table, schedule, material, sink, extra);
+  // Symmetric without VCI's offsets: each point writes the group block's upper half, mirrored once a group.
+  assemble_point_blocks(table, schedule, material, sink, extra, offsets.empty());
 }
 
 std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const Lame& lame,

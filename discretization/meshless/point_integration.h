@@ -20,9 +20,14 @@ namespace kerf {
 /// (every law here derives from an energy): half the node pairs are computed,
 /// the other half mirrored. With `offsets` (dim per slot of the table, 1/m: VCI's),
 /// the test side uses G + offsets (Petrov-Galerkin): every pair, not symmetric.
+/// With `upper_half` (no offsets), only the node blocks at or above the
+/// block's diagonal are written: the caller mirrors them once (mirror_upper_half).
 void add_material_block(const ShapeTable& table, Index point, const Mat9& dPdF, double scale,
                         std::span<const Index> place, Index block_nodes, std::vector<double>& block,
-                        std::span<const double> offsets = {});
+                        std::span<const double> offsets = {}, bool upper_half = false);
+/// Copies a symmetric block's node blocks above the diagonal onto those below
+/// ((block_nodes dim)^2, row-major).
+void mirror_upper_half(Index block_nodes, int dim, std::vector<double>& block);
 
 /// Adds a method's own terms (stabilisation) to one point's block.
 using BlockExtra = std::function<void(Index point, std::vector<double>& block)>;
@@ -56,9 +61,11 @@ using PointBlockTerm =
 /// Every point's term into the sink, a group's points summed first: colour by
 /// colour, the cubes of a colour in parallel, each cube's groups in order (the
 /// sum in each entry does not depend on the thread count). `extra` (groups of
-/// one point only) adds a method's own terms to the point's block.
+/// one point only) adds a method's own terms to the point's block. With
+/// `upper_half`, the terms write a symmetric block's upper half only, and it
+/// is mirrored once a group, before `extra` and the sink.
 void assemble_point_blocks(const ShapeTable& table, const PointSchedule& schedule, const PointBlockTerm& term,
-                           const BlockSink& sink, const BlockExtra& extra = {});
+                           const BlockSink& sink, const BlockExtra& extra = {}, bool upper_half = false);
 
 /// K(u) of every point (weight w_p, the law's tangent at F_p, plus `extra`)
 /// into the sink, by assemble_point_blocks; `offsets` as add_material_block's.

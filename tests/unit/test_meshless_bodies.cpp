@@ -201,7 +201,8 @@ TEST(MeshlessBodies, PointScheduleColoursShareNoNodeAndHoldEveryPoint) {
 }
 
 // A cell's Gauss points are summed over the union of their nodes before the
-// sink: the matrix must be the one the points give one by one.
+// sink, each writing the upper half, mirrored once a group: the matrix must
+// be the one the points give one by one, each block written whole.
 TEST(MeshlessBodies, GroupedPointBlocksAssembleThePointsMatrix) {
   for (int dim : {2, 3}) {
     auto body = small_body("efg", dim, MaterialModel::corotational);
@@ -224,6 +225,26 @@ TEST(MeshlessBodies, GroupedPointBlocksAssembleThePointsMatrix) {
     ASSERT_GT(points.schedule().group_size, 1);
     ASSERT_GT(one_by_one.norm(), 0.0);
     EXPECT_LT((by_cells - one_by_one).norm(), 1e-13 * one_by_one.norm()) << dim;
+    // Both write the blocks' upper halves and mirror them: against every node
+    // pair written point by point, each point's whole block.
+    const ShapeTable& table = points.shapes();
+    Eigen::MatrixXd whole = Eigen::MatrixXd::Zero(body->dof_count(), body->dof_count());
+    for (Index p = 0; p < table.point_count(); ++p) {
+      auto near = table.neighbours.of(p);
+      const Index n = static_cast<Index>(near.size());
+      std::vector<Index> place(n);
+      for (Index k = 0; k < n; ++k) place[k] = k;
+      std::vector<double> block(static_cast<std::size_t>(dim * n) * (dim * n), 0.0);
+      Mat3 P;
+      Mat9 dPdF;
+      law.stress_and_tangent(deformation_gradient(table, p, u), P, dPdF);
+      add_material_block(table, p, dPdF, points.weight(p), place, n, block);
+      for (Index a = 0; a < dim * n; ++a)
+        for (Index b = 0; b < dim * n; ++b)
+          whole(dim * near[a / dim] + a % dim, dim * near[b / dim] + b % dim) += block[a * dim * n + b];
+    }
+    EXPECT_LT((by_cells - whole).norm(), 1e-13 * whole.norm()) << dim;
+    EXPECT_LT((one_by_one - whole).norm(), 1e-13 * whole.norm()) << dim;
   }
 }
 
