@@ -100,4 +100,5 @@ bool GridRule::phi_may_have_changed(const Vec3& x) const {
   constexpr double reach = 1.5;
   return lattice_moved_ || grown_columns_.empty() || grid_->reaches(grown_columns_, x, reach * spacing_);
 }
+
 }  // namespace kerf
