@@ -8,14 +8,6 @@
 
 namespace kerf {
 
-namespace {
-// A grown grid's column (or a comparison of two) takes tens of nanoseconds: a
-// few thousand are less work than waking a second thread under kerf's
-// passive waiting (measured: a 1 300-column growth's grid took longer on two
-// threads than on one).
-constexpr Index columns_worth_threads = 8192;
-}  // namespace
-
 EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spacing, double padding)
     : EnrichmentGrid(cut, pieces, spacing, padding, nullptr) {}
 
@@ -36,10 +28,9 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
   const bool grows =
       before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
   const CutRegionIndex added(cut, grows ? before->pieces_ : pieces_, pieces_, frame_);  // the new pieces
-  const Index columns = static_cast<Index>(columns_.size());
   ParallelFailure failure;
-#pragma omp parallel for schedule(static) if (!grows || columns >= columns_worth_threads)
-  for (Index c = 0; c < columns; ++c)
+#pragma omp parallel for schedule(static)
+  for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c)
     failure.run([&] {
       const Vec3 x = column_point(c);
       const Index old = grows ? column_in(*before, c) : -1;
@@ -215,7 +206,7 @@ std::vector<char> EnrichmentGrid::changed_columns(const EnrichmentGrid& before) 
   std::vector<char> changed(columns, 0);
   const bool same_points = same_lattice(before);
   ParallelFailure failure;
-#pragma omp parallel for schedule(static) if (columns >= columns_worth_threads)
+#pragma omp parallel for schedule(static)
   for (Index c = 0; c < columns; ++c)
     failure.run([&] {
       const Vec3 base = column_point(c);

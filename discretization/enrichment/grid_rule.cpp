@@ -70,8 +70,7 @@ void GridRule::grow(const CutSurface& cut, Index pieces, std::span<const Index> 
   const Index count = static_cast<Index>(enriched_list_.size());
   std::vector<signed char> side(count, 0);  // 0: not reached
   ParallelFailure failure;
-  constexpr Index nodes_worth_threads = 4096;  // a node's test takes about 100 ns: as enrichment_grid.cpp's columns
-#pragma omp parallel for schedule(dynamic, 64) if (count >= nodes_worth_threads)
+#pragma omp parallel for schedule(dynamic, 64)
   for (Index k = 0; k < count; ++k)
     failure.run([&] {
       const Index I = enriched_list_[k];
