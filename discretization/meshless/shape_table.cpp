@@ -22,6 +22,16 @@ bool same_factors(const ShapeTable& t, Index p, const PointShapes& scratch) {
 
 enum class Filled { row, unchanged, singular };
 
+/// A node's weight times its cut factor, (w g)' = w' g + w g' (either weight
+/// type); false, and w as it was, where the factor is 1 and flat.
+template <class Weight>
+bool apply_factor(const WeightFactor& g, Weight& w) {
+  if (g.value == 1.0 && g.gradient == Vec3::Zero()) return false;
+  w.gradient = g.value * w.gradient + w.value * g.gradient;
+  w.value *= g.value;
+  return true;
+}
+
 // A cut can leave a point's side nodes thin along some direction: the linear
 // fields they still tell apart are kept, and no steep gradient. Nodes that
 // thin make the moment matrix's condition at least 1 / (1e-2 of their largest
@@ -121,14 +131,9 @@ bool PointShapes::evaluate_looked_up(const NodeSet& nodes, MlsBasis basis, const
     scale = std::max(scale, nodes.support[I]);
     WeightValue wI = quartic_weight(point, nodes.positions[I], nodes.support[I], hessians);
     const WeightFactor& g = factors_[k];
-    if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
-      // (w g)' = w' g + w g'; (w g)'' without w g'' (see the header).
-      if (hessians)
-        wI.hessian = g.value * wI.hessian + wI.gradient * g.gradient.transpose() + g.gradient * wI.gradient.transpose();
-      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;
-      wI.value *= g.value;
-      weight_factor[k] = g.value;
-    }
+    if (hessians)  // (w g)'' without w g'' (see the header), from w' before the factor
+      wI.hessian = g.value * wI.hessian + wI.gradient * g.gradient.transpose() + g.gradient * wI.gradient.transpose();
+    if (apply_factor(g, wI)) weight_factor[k] = g.value;
     w_.push_back(wI);
   }
   const int dim = nodes.dimension;
@@ -153,13 +158,8 @@ bool PointShapes::evaluate_linear(const NodeSet& nodes, const Vec3& point, std::
     scale = std::max(scale, nodes.support[I]);
     WeightWithGradient& wI = linear_w_[k];
     wI = quartic_weight_with_gradient(point, nodes.positions[I], nodes.support[I]);
-    const WeightFactor& g = factors_[k];
-    if (g.value != 1.0 || g.gradient != Vec3::Zero()) {
-      wI.gradient = g.value * wI.gradient + wI.value * g.gradient;  // (w g)' = w' g + w g'
-      wI.value *= g.value;
-      weight_factor[k] = g.value;
-      cut_hides_nodes |= g.value < 1.0;
-    }
+    if (apply_factor(factors_[k], wI)) weight_factor[k] = factors_[k].value;
+    cut_hides_nodes |= weight_factor[k] < 1.0;
   }
   const int dim = nodes.dimension;
   const bool full = mls_linear_shape_functions(dim, point, x_, linear_w_, scale, shape);
