@@ -2,8 +2,8 @@
 # MPI, or VTK are shared objects in build/modules (installed in lib/kerf),
 # loaded on their first use, so that a run never pays for a library it does
 # not use; so is the `kerf` program itself, which its launcher loads once the
-# thread policy's variables are set (cli/launcher.cpp). Each exports only its `kerf_<name>_module` table: the kerf
-# libraries it links are hidden inside it.
+# thread policy's variables are set (cli/launcher.cpp). Each exports only its
+# `kerf_<name>_module` table: the kerf libraries it links are hidden inside it.
 set(KERF_MODULE_DIR ${CMAKE_BINARY_DIR}/modules)
 set(KERF_INSTALLED_MODULE_DIR ${CMAKE_INSTALL_LIBDIR}/kerf)
 # Every program and library of the build finds them through its RUNPATH;
