@@ -45,22 +45,42 @@ struct RotationSvd {
   }
 };
 
+/// The rotation of the polar decomposition F = R S by Higham's Newton iteration
+/// X <- (X + X^-T) / 2, which converges quadratically for det F > 0 and is
+/// several times cheaper than an SVD; false for nearly flat or inverted F.
+bool newton_polar_rotation(const Mat3& F, Mat3& R) {
+  const double scale = F.squaredNorm() / 3.0;  // mean squared singular value
+  if (!(F.determinant() > 1e-3 * scale * std::sqrt(scale))) return false;
+  R = F;
+  for (int k = 0; k < 30; ++k) {
+    Mat3 next = 0.5 * (R + R.inverse().transpose());
+    double change = (next - R).squaredNorm();
+    R = next;
+    if (change < 1e-28) return true;
+  }
+  return false;
+}
+
+/// dR/dF of F = R S in closed form (9x9 on column-major vec, as tangent_from_directions).
+/// dR = R [w]x, and the skew part of R^T dF = [w]x S + dS gives (tr S I - S) w =
+/// axial(R^T dF - dF^T R) = B^T vec(dF), where column k of B is vec(R [e_k]x).
+/// So dR/dF = B (tr S I - S)^-1 B^T: symmetric, rank 3. S must be positive definite.
+Mat9 polar_rotation_derivative(const Mat3& R, const Mat3& S) {
+  Eigen::Matrix<double, 9, 3> B;
+  // vec(R [e_k]x): its column j is R (e_k x e_j).
+  B.col(0) << Vec3::Zero(), R.col(2), -R.col(1);
+  B.col(1) << -R.col(2), Vec3::Zero(), R.col(0);
+  B.col(2) << R.col(1), -R.col(0), Vec3::Zero();
+  const Mat3 G = S.trace() * Mat3::Identity() - S;
+  const Eigen::Matrix<double, 9, 3> BH = B.lazyProduct(G.inverse());
+  return BH.lazyProduct(B.transpose());  // coefficient-wise: a 9x9 result is too small for a blocked product
+}
+
 }  // namespace
 
-/// The rotation of the polar decomposition F = R S. Higham's Newton iteration
-/// X <- (X + X^-T) / 2 converges quadratically for det F > 0 and is several
-/// times cheaper than an SVD; nearly flat or inverted F takes the SVD.
 Mat3 polar_rotation(const Mat3& F) {
-  const double scale = F.squaredNorm() / 3.0;  // mean squared singular value
-  if (F.determinant() > 1e-3 * scale * std::sqrt(scale)) {
-    Mat3 X = F;
-    for (int k = 0; k < 30; ++k) {
-      Mat3 next = 0.5 * (X + X.inverse().transpose());
-      double change = (next - X).squaredNorm();
-      X = next;
-      if (change < 1e-28) return X;
-    }
-  }
+  Mat3 R;
+  if (newton_polar_rotation(F, R)) return R;
   return RotationSvd(F).rotation();
 }
 
@@ -172,9 +192,21 @@ void MaterialLaw::exact_tangent(const Mat3& F, Mat3& P, Mat9& dPdF) const {
       return;
     }
     case MaterialModel::corotational: {
+      // dP = 2 mu (dF - dR) + lambda tr(R^T dF) R + lambda t dR, with t = tr S - 3.
+      Mat3 R;
+      if (newton_polar_rotation(F, R)) {
+        const Mat3 S = sym(R.transpose() * F);
+        const double t = S.trace() - 3.0;
+        P = 2.0 * mu * (F - R) + lambda * t * R;
+        const Eigen::Map<const Eigen::Matrix<double, 9, 1>> r(R.data());
+        dPdF = (lambda * t - 2.0 * mu) * polar_rotation_derivative(R, S) + lambda * r * r.transpose();
+        dPdF.diagonal().array() += 2.0 * mu;
+        return;
+      }
+      // Nearly flat or inverted: the SVD's rotation, which has a negative singular value there.
       RotationSvd svd(F);
-      Mat3 R = svd.rotation();
-      double t = svd.sigma.sum() - 3.0;
+      R = svd.rotation();
+      const double t = svd.sigma.sum() - 3.0;
       P = 2.0 * mu * (F - R) + lambda * t * R;
       dPdF = tangent_from_directions([&](const Mat3& dF) {
         Mat3 dR = svd.rotation_derivative(dF);
@@ -279,6 +311,8 @@ Mat9 MaterialLaw::bulk_measure_hessian(const Mat3& F) const {
     case MaterialModel::linear:
       return Mat9::Zero();
     case MaterialModel::corotational: {
+      Mat3 R;
+      if (newton_polar_rotation(F, R)) return polar_rotation_derivative(R, sym(R.transpose() * F));
       const RotationSvd svd(F);
       return tangent_from_directions([&](const Mat3& dF) { return svd.rotation_derivative(dF); });
     }
