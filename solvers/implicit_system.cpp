@@ -293,20 +293,14 @@ bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::st
   const double tolerance = linear_tolerance_;
   const SparseMatrix& A = free_.restricted();
   const double b_norm = b.norm();
-  x = Vector::Zero(b.size());
-  if (b_norm == 0.0) return true;
-  Vector r = b, z, p, Ap;
-  // Start from the previous solution scaled to minimise the A-norm error
-  // (never worse than zero): successive steps solve similar systems.
-  if (previous_solution_.size() == b.size()) {
-    Ap.noalias() = A * previous_solution_;
-    double curvature = previous_solution_.dot(Ap);
-    if (curvature > 0.0) {
-      double scale = previous_solution_.dot(b) / curvature;
-      x = scale * previous_solution_;
-      r = b - scale * Ap;
-    }
+  if (b_norm == 0.0) {
+    x = Vector::Zero(b.size());
+    return true;
   }
+  Vector r, z, p, Ap;
+  // Successive steps solve similar systems: start from the best combination
+  // of the last solutions in the A-norm (never worse than zero).
+  recent_solutions_.start(A, b, x, r);
   auto precondition = [&](const Vector& in, Vector& out) {
     LinearSolverStatus status = solver_->solve(in, out);
     KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
@@ -370,8 +364,13 @@ Vector ImplicitSystem::solve_unsymmetric(const Vector& b, const std::string& whe
                     result.iterations, " iterations (relative residual ", result.relative_residual, ", tolerance ",
                     linear_tolerance_, "): its Galerkin counterpart, the preconditioner, no longer fits it; expected "
                     "discretization.meshless.vci: none or a better-conditioned node set");
-  previous_solution_ = x;
+  remember_solution(x);
   return x;
+}
+
+void ImplicitSystem::remember_solution(const Vector& x) {
+  previous_solution_ = x;
+  recent_solutions_.remember(x);
 }
 
 Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
@@ -384,7 +383,7 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
       converged = preconditioned_cg(rhs_free, x, where) && x.allFinite();
     }
     if (converged) {
-      previous_solution_ = x;
+      remember_solution(x);
       return x;
     }
     factorize_now(where);  // timed as "factorize"
@@ -394,7 +393,7 @@ Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
   KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
   report_.solver.linear_iterations += solver_->last_iterations();
   KERF_CHECK_SHARED(x.allFinite(), where, ": the linear solve returned NaN or infinity (singular matrix?)");
-  previous_solution_ = x;
+  remember_solution(x);
   return x;
 }
 

@@ -1,0 +1,47 @@
+#include "solvers/solution_history.h"
+
+#include <Eigen/Eigenvalues>
+
+namespace kerf {
+
+void SolutionHistory::remember(const Vector& x) {
+  if (capacity_ <= 0) return;
+  if (solutions_.rows() != x.size()) {
+    solutions_.resize(x.size(), capacity_);
+    count_ = next_ = 0;
+  }
+  solutions_.col(next_) = x;
+  next_ = (next_ + 1) % capacity_;
+  count_ = std::min(count_ + 1, capacity_);
+}
+
+void SolutionHistory::start(const SparseMatrix& A, const Vector& b, Vector& x0, Vector& r0) const {
+  x0 = Vector::Zero(b.size());
+  r0 = b;
+  if (count_ == 0 || solutions_.rows() != b.size()) return;
+  const auto V = solutions_.leftCols(count_);
+  const Eigen::MatrixXd AV = A * V;  // one pass over A for all columns (A is row-major)
+  const Eigen::MatrixXd G = V.transpose() * AV;
+  // Scaled to a unit diagonal, so that the cut-off below is relative to each
+  // column's own size; columns with v^T A v <= 0 are left out.
+  Vector scale = Vector::Zero(count_);
+  for (int i = 0; i < count_; ++i)
+    if (G(i, i) > 0.0) scale(i) = 1.0 / std::sqrt(G(i, i));
+  if (scale.isZero()) return;
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * G * scale.asDiagonal();
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(scaled);
+  if (eigen.info() != Eigen::Success) return;
+  // The pseudo-inverse: directions of the span that the others (nearly) repeat carry no new information.
+  const Vector& values = eigen.eigenvalues();
+  const double cutoff = 1e-10 * values.cwiseAbs().maxCoeff();
+  const Vector projected = eigen.eigenvectors().transpose() * (scale.asDiagonal() * (V.transpose() * b));
+  Vector weights = Vector::Zero(count_);
+  for (int i = 0; i < count_; ++i)
+    if (values(i) > cutoff) weights(i) = projected(i) / values(i);
+  const Vector y = scale.asDiagonal() * (eigen.eigenvectors() * weights);
+  if (!y.allFinite()) return;
+  x0.noalias() = V * y;
+  r0.noalias() = b - AV * y;
+}
+
+}  // namespace kerf
