@@ -30,7 +30,9 @@ class SolutionHistory {
   int capacity_;
   int count_ = 0;  // columns of solutions_ in use
   int next_ = 0;   // the column the next solution overwrites once all are in use
-  Eigen::MatrixXd solutions_;  // one solution a column, in no particular order (a span is all that counts)
+  // One solution a column, in no particular order (a span is all that counts);
+  // row-major, so that A V reads each row of V as one contiguous run.
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> solutions_;
 };
 
 }  // namespace kerf
