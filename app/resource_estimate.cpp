@@ -314,7 +314,9 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
   m.tables = tables / mb;
-  m.matrix = (matrix_copies * 12.0 * e.nonzeros + 8.0 * e.factor_nonzeros) / mb;
+  // A nonlinear body's factor also keeps a single-precision copy, to precondition with once stale.
+  const double factor_bytes = scene.material.model == MaterialModel::linear ? 8.0 : 12.0;
+  m.matrix = (matrix_copies * 12.0 * e.nonzeros + factor_bytes * e.factor_nonzeros) / mb;
   m.whole = (64.0 * e.grid_points + 8.0 * 30.0 * e.dofs) / mb;  // the grid's columns; the state and work vectors
   return m;
 }

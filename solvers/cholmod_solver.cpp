@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/thread_scope.h"
+#include "solvers/single_precision_factor.h"
 
 namespace kerf {
 namespace {
@@ -63,7 +64,18 @@ class CholmodSolver final : public LinearSolver {
       return status;
     }
     if (common_.status < CHOLMOD_OK) return failure("numeric factorization");
-    return numerically_singular(A);
+    LinearSolverStatus status = numerically_singular(A);
+    single_.clear();
+    if (status.ok && keep_single_) single_.copy(*factor_);
+    return status;
+  }
+
+  void keep_single_precision_copy() override { keep_single_ = true; }
+
+  LinearSolverStatus precondition(const Vector& b, Vector& x) override {
+    if (single_.empty()) return solve(b, x);
+    single_.solve(b, x);
+    return LinearSolverStatus::success();
   }
 
   LinearSolverStatus solve(const Vector& b, Vector& x) override {
@@ -140,6 +152,8 @@ class CholmodSolver final : public LinearSolver {
 
   cholmod_common common_{};
   cholmod_factor* factor_ = nullptr;
+  bool keep_single_ = false;
+  SinglePrecisionFactor single_;  // of factor_, when keep_single_
   cholmod_dense* x_ = nullptr;
   cholmod_dense* y_ = nullptr;
   cholmod_dense* e_ = nullptr;

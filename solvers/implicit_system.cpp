@@ -82,6 +82,11 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
              "solve across MPI ranks does not take yet; expected discretization.meshless.vci: none for an implicit or "
              "static run under mpirun (explicit runs take VCI on any number of ranks)");
   reuse_factorization_ = symmetric_ && !mechanics_.is_linear() && solver_->exact_factor() && !solver_->copies_matrix();
+  // The stale factor only preconditions: its single-precision copy streams half
+  // the bytes. 6 786-node block: the solve phase 22.4 -> 16.6 ms a step, CG
+  // iterations unchanged; nearly incompressible (nu = 0.499) corotational tet10
+  // cantilever, 73 Newton iterations: 1 338 -> 1 302 CG iterations, 46 -> 49 factorizations.
+  if (reuse_factorization_) solver_->keep_single_precision_copy();
   tangent_ = options.tangent;
   mechanics_.use_definite_tangent(tangent_ == TangentKind::definite);
   if (needs_mass) {
@@ -302,7 +307,7 @@ bool ImplicitSystem::preconditioned_cg(const Vector& b, Vector& x, const std::st
   // of the last solutions in the A-norm (never worse than zero).
   recent_solutions_.start(A, b, x, r);
   auto precondition = [&](const Vector& in, Vector& out) {
-    LinearSolverStatus status = solver_->solve(in, out);
+    LinearSolverStatus status = solver_->precondition(in, out);
     KERF_CHECK_SHARED(status.ok, where, ": ", status.message);
   };
   precondition(r, z);

@@ -57,6 +57,11 @@ class LinearSolver {
   virtual LinearSolverStatus factorize(const SparseMatrix& A) = 0;
   /// x = A^-1 b for the last factorized A.
   virtual LinearSolverStatus solve(const Vector& b, Vector& x) = 0;
+  /// An approximate x = A^-1 b, to precondition with: the single-precision copy
+  /// of the factor where the backend keeps one (keep_single_precision_copy), else solve().
+  virtual LinearSolverStatus precondition(const Vector& b, Vector& x) { return solve(b, x); }
+  /// Keep a single-precision copy of each factor from now on, for precondition() (backends that can).
+  virtual void keep_single_precision_copy() {}
   /// Iterations of the last solve (0 for direct solvers).
   virtual int last_iterations() const { return 0; }
   /// Values a direct solver's factor holds (0 when none): each solve streams them twice.

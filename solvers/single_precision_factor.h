@@ -1,0 +1,37 @@
+#pragma once
+// A single-precision copy of a supernodal Cholesky factor (CHOLMOD's) and its
+// triangular solves. Each solve streams the factor twice and is bound by memory
+// bandwidth, so half the bytes take about half the time; the answer is good to
+// about kappa(A) times float's round-off, which is enough to precondition
+// conjugate gradients on a matrix the factor no longer matches exactly anyway.
+#include <cstddef>
+#include <vector>
+
+#include "core/types.h"
+
+struct cholmod_factor_struct;
+
+namespace kerf {
+
+class SinglePrecisionFactor {
+ public:
+  /// Copies L of A = P^T L L^T P; false (and empty) unless L is supernodal LL^T with int indices.
+  bool copy(const cholmod_factor_struct& L);
+  void clear();
+  bool empty() const { return super_.empty(); }
+  std::size_t entries() const { return values_.size(); }
+
+  /// x = (P^T L L^T P)^-1 b, in single precision.
+  void solve(const Vector& b, Vector& x) const;
+
+ private:
+  std::vector<int> permutation_;  // P: row k of the factor is row permutation_[k] of A
+  std::vector<int> super_;        // supernode s holds columns super_[s] .. super_[s + 1]
+  std::vector<int> row_start_;    // its rows: rows_[row_start_[s] .. row_start_[s + 1]]
+  std::vector<int> rows_;
+  std::vector<std::size_t> value_start_;  // its dense column-major block in values_
+  std::vector<float> values_;
+  mutable std::vector<float> y_, below_;  // workspaces
+};
+
+}  // namespace kerf

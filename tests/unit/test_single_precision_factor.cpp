@@ -1,0 +1,84 @@
+// The stale-factor CG preconditions with a single-precision copy of CHOLMOD's
+// supernodal factor: its solve is the double one to float's round-off times
+// the condition number (and not equal to it: the copy is really used), it
+// follows each new factorization, and without the copy precondition() is solve().
+#include <gtest/gtest.h>
+
+#include <vector>
+
+#include "core/run_report.h"
+#include "solvers/linear_solver.h"
+
+namespace kerf {
+namespace {
+
+/// A 3D Laplacian on an m^3 grid plus `shift` on the diagonal: its nested
+/// dissection factor has supernodes with rows below their diagonal blocks.
+SparseMatrix laplacian_3d(Index m, double shift) {
+  std::vector<Eigen::Triplet<double, Index>> entries;
+  auto at = [m](Index i, Index j, Index k) { return (i * m + j) * m + k; };
+  for (Index i = 0; i < m; ++i)
+    for (Index j = 0; j < m; ++j)
+      for (Index k = 0; k < m; ++k) {
+        entries.emplace_back(at(i, j, k), at(i, j, k), 6.0 + shift);
+        for (Index d : {-1, 1}) {
+          if (i + d >= 0 && i + d < m) entries.emplace_back(at(i, j, k), at(i + d, j, k), -1.0);
+          if (j + d >= 0 && j + d < m) entries.emplace_back(at(i, j, k), at(i, j + d, k), -1.0);
+          if (k + d >= 0 && k + d < m) entries.emplace_back(at(i, j, k), at(i, j, k + d), -1.0);
+        }
+      }
+  SparseMatrix A(m * m * m, m * m * m);
+  A.setFromTriplets(entries.begin(), entries.end());
+  return A;
+}
+
+struct Factored {
+  RunReport report;
+  std::unique_ptr<LinearSolver> solver = make_linear_solver({}, report);
+  Factored(const SparseMatrix& A, bool single) {
+    if (single) solver->keep_single_precision_copy();
+    EXPECT_TRUE(solver->analyze(A).ok);
+    EXPECT_TRUE(solver->factorize(A).ok);
+  }
+};
+
+TEST(SinglePrecisionFactor, SolvesToFloatRoundOffTimesTheConditionNumber) {
+  const SparseMatrix A = laplacian_3d(14, 0.05);
+  // Eigenvalues from 6 - 6 cos(pi / 15) + 0.05 = 0.18 to 12.05: condition number 67.
+  const double bound = 67 * 6e-8;  // times float's unit round-off
+  Factored f(A, true);
+  const Vector b = Vector::Random(A.rows());
+  Vector exact, approximate;
+  ASSERT_TRUE(f.solver->solve(b, exact).ok);
+  ASSERT_TRUE(f.solver->precondition(b, approximate).ok);
+  const double error = (approximate - exact).norm() / exact.norm();
+  EXPECT_LT(error, bound);
+  EXPECT_GT(error, 1e-12);  // float, not the double factor
+  // Its residual against A, not just against the double solve.
+  EXPECT_LT((A * approximate - b).norm(), bound * b.norm());
+}
+
+TEST(SinglePrecisionFactor, FollowsEachFactorization) {
+  const SparseMatrix A = laplacian_3d(10, 0.05);
+  SparseMatrix B = A;
+  B.diagonal().array() += 1.0;
+  Factored f(A, true);
+  ASSERT_TRUE(f.solver->factorize(B).ok);
+  const Vector b = Vector::Random(A.rows());
+  Vector x;
+  ASSERT_TRUE(f.solver->precondition(b, x).ok);
+  EXPECT_LT((B * x - b).norm(), 1e-5 * b.norm());
+}
+
+TEST(SinglePrecisionFactor, WithoutTheCopyPreconditionIsTheSolve) {
+  const SparseMatrix A = laplacian_3d(10, 0.05);
+  Factored f(A, false);
+  const Vector b = Vector::Random(A.rows());
+  Vector exact, x;
+  ASSERT_TRUE(f.solver->solve(b, exact).ok);
+  ASSERT_TRUE(f.solver->precondition(b, x).ok);
+  EXPECT_EQ(x, exact);
+}
+
+}  // namespace
+}  // namespace kerf
