@@ -241,6 +241,8 @@ const bool paired =
                             "bare linear tet4 assembly + one CG iteration with a fixed CHOLMOD factor"),
      bench::pair_with_floor("BM_ImplicitEulerStepCorotationalPetscGamg/2", "BM_ImplicitStepFloor/2",
                             "bare linear tet4 assembly + one CG iteration with a fixed CHOLMOD factor"),
+     bench::pair_with_floor("BM_CholmodSolveSinglePrecision/2", "BM_CholmodSolve/2",
+                            "CHOLMOD's own double-precision solve with the same factor (twice the bytes)"),
      bench::pair_with_floor("BM_StiffnessAssemblyCorotational/2", "BM_StiffnessAssemblyFloor/2",
                             "bare LINEAR tet4 K_e, f_e through a slot table"),
      bench::pair_with_floor("BM_ElementKernelsCorotational/2", "BM_StiffnessAssemblyFloor/2",
