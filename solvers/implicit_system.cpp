@@ -83,9 +83,10 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
              "static run under mpirun (explicit runs take VCI on any number of ranks)");
   reuse_factorization_ = symmetric_ && !mechanics_.is_linear() && solver_->exact_factor() && !solver_->copies_matrix();
   // The stale factor only preconditions: its single-precision copy streams half
-  // the bytes. 6 786-node block: the solve phase 22.4 -> 16.6 ms a step, CG
-  // iterations unchanged; nearly incompressible (nu = 0.499) corotational tet10
-  // cantilever, 73 Newton iterations: 1 338 -> 1 302 CG iterations, 46 -> 49 factorizations.
+  // the bytes, on two threads. 6 786-node block: the solve phase 22.4 -> 16.6 ms
+  // a step (one thread), 10.6-11.1 (two), CG iterations unchanged; nearly
+  // incompressible (nu = 0.499) corotational tet10 cantilever, 73 Newton
+  // iterations: 1 338 -> 1 302 CG iterations, 46 -> 49 factorizations.
   if (reuse_factorization_) solver_->keep_single_precision_copy();
   tangent_ = options.tangent;
   mechanics_.use_definite_tangent(tangent_ == TangentKind::definite);

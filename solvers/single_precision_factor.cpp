@@ -1,9 +1,11 @@
 #include "solvers/single_precision_factor.h"
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include <Eigen/Core>
 #include <algorithm>
+#include <numeric>
 
 namespace kerf {
 namespace {
@@ -31,49 +33,121 @@ bool SinglePrecisionFactor::copy(const cholmod_factor& L) {
   value_start_ = copied<std::size_t>(L.px, supernodes + 1);
   const auto* x = static_cast<const double*>(L.x);
   values_.assign(x, x + value_start_.back());
+  split_in_two();
   y_.resize(n);
-  below_.resize(L.maxesize);
+  for (auto& below : below_) below.resize(L.maxesize);
+  for (auto& share : top_share_) share.resize(n - top_first_column_);
   return true;
+}
+
+void SinglePrecisionFactor::split_in_two() {
+  // The supernodal elimination tree; CHOLMOD's supernodes are postordered, so
+  // each subtree is a contiguous run of supernodes ending at its root.
+  const Index supernodes = static_cast<Index>(super_.size()) - 1;
+  std::vector<Index> supernode_of_column(super_.back()), parent(supernodes, -1), first(supernodes);
+  std::vector<std::vector<Index>> children(supernodes);
+  std::vector<std::size_t> work(supernodes);
+  std::iota(first.begin(), first.end(), 0);
+  for (Index s = 0; s < supernodes; ++s)
+    for (Index c = super_[s]; c < super_[s + 1]; ++c) supernode_of_column[c] = s;
+  std::vector<Index> roots;
+  for (Index s = 0; s < supernodes; ++s) {
+    work[s] += value_start_[s + 1] - value_start_[s];
+    const Index width = super_[s + 1] - super_[s];
+    if (row_start_[s + 1] - row_start_[s] > width) {
+      parent[s] = supernode_of_column[rows_[row_start_[s] + width]];
+      children[parent[s]].push_back(s);
+      work[parent[s]] += work[s];
+      first[parent[s]] = std::min(first[parent[s]], first[s]);
+    } else {
+      roots.push_back(s);
+    }
+  }
+  // Down from a single root while it has a single child: that chain (the top
+  // separator, the last supernodes) runs alone; the subtrees below it share no
+  // column and write to each other's rows never, to the chain's only.
+  std::vector<Index> subtrees = roots;
+  top_first_supernode_ = supernodes;
+  if (roots.size() == 1) {
+    Index s = roots[0];
+    while (children[s].size() == 1) s = children[s][0];
+    top_first_supernode_ = s;
+    subtrees = children[s];
+  }
+  top_first_column_ = super_[top_first_supernode_];
+  // The subtrees, largest first, each to the part with less work so far.
+  std::sort(subtrees.begin(), subtrees.end(), [&](Index a, Index b) { return work[a] > work[b]; });
+  std::array<std::size_t, 2> load{};
+  for (auto& part : parts_) part.clear();
+  for (Index root : subtrees) {
+    const int lighter = load[0] <= load[1] ? 0 : 1;
+    parts_[lighter].push_back({first[root], root + 1});
+    load[lighter] += work[root];
+  }
 }
 
 void SinglePrecisionFactor::clear() {
   for (auto* v : {&permutation_, &super_, &row_start_, &rows_}) v->clear();
   value_start_.clear();
   values_.clear();
+  for (auto& part : parts_) part.clear();
+}
+
+FloatBlock SinglePrecisionFactor::block(Index s, Index& first, Index& width, Index& height) const {
+  first = super_[s];
+  width = super_[s + 1] - first;
+  height = row_start_[s + 1] - row_start_[s];
+  return FloatBlock(values_.data() + value_start_[s], height, width, Eigen::OuterStride<>(height));
+}
+
+void SinglePrecisionFactor::forward(Index s, float* below_rows, float* top_share) const {
+  Index first, width, height;
+  const FloatBlock L = block(s, first, width, height);
+  FloatVector top(y_.data() + first, width);
+  L.topRows(width).triangularView<Eigen::Lower>().solveInPlace(top);
+  FloatVector below(below_rows, height - width);
+  below.noalias() = L.bottomRows(height - width) * top;
+  const int* row = rows_.data() + row_start_[s] + width;
+  for (Index i = 0; i < height - width; ++i) {
+    if (row[i] < top_first_column_ || !top_share)
+      y_[row[i]] -= below[i];
+    else
+      top_share[row[i] - top_first_column_] += below[i];
+  }
+}
+
+void SinglePrecisionFactor::backward(Index s, float* below_rows) const {
+  Index first, width, height;
+  const FloatBlock L = block(s, first, width, height);
+  FloatVector below(below_rows, height - width);
+  const int* row = rows_.data() + row_start_[s] + width;
+  for (Index i = 0; i < height - width; ++i) below[i] = y_[row[i]];
+  FloatVector top(y_.data() + first, width);
+  top.noalias() -= L.bottomRows(height - width).transpose() * below;
+  L.topRows(width).triangularView<Eigen::Lower>().transpose().solveInPlace(top);
 }
 
 void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   const Index n = static_cast<Index>(permutation_.size());
-  for (Index k = 0; k < n; ++k) y_[k] = static_cast<float>(b[permutation_[k]]);
   const Index supernodes = static_cast<Index>(super_.size()) - 1;
-  // Supernode s: a dense block of `height` rows by `width` columns, its top
-  // square the diagonal block (lower triangular), the rest the rows below.
-  auto block = [&](Index s, Index& first, Index& width, Index& height) {
-    first = super_[s];
-    width = super_[s + 1] - first;
-    height = row_start_[s + 1] - row_start_[s];
-    return FloatBlock(values_.data() + value_start_[s], height, width, Eigen::OuterStride<>(height));
-  };
-  for (Index s = 0; s < supernodes; ++s) {  // L y = P b
-    Index first, width, height;
-    const FloatBlock L = block(s, first, width, height);
-    FloatVector top(y_.data() + first, width);
-    L.topRows(width).triangularView<Eigen::Lower>().solveInPlace(top);
-    FloatVector below(below_.data(), height - width);
-    below.noalias() = L.bottomRows(height - width) * top;
-    const int* row = rows_.data() + row_start_[s] + width;
-    for (Index i = 0; i < height - width; ++i) y_[row[i]] -= below[i];
+  for (Index k = 0; k < n; ++k) y_[k] = static_cast<float>(b[permutation_[k]]);
+  // L y = P b: the two parts side by side, each adding what it takes from the
+  // top chain's rows into its own share; then the shares, then the chain. The
+  // same sums in the same order on one thread or two: the same answer.
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
+  for (int p = 0; p < 2; ++p) {
+    std::fill(top_share_[p].begin(), top_share_[p].end(), 0.0f);
+    for (const auto& [begin, end] : parts_[p])
+      for (Index s = begin; s < end; ++s) forward(s, below_[p].data(), top_share_[p].data());
   }
-  for (Index s = supernodes - 1; s >= 0; --s) {  // L^T z = y
-    Index first, width, height;
-    const FloatBlock L = block(s, first, width, height);
-    FloatVector below(below_.data(), height - width);
-    const int* row = rows_.data() + row_start_[s] + width;
-    for (Index i = 0; i < height - width; ++i) below[i] = y_[row[i]];
-    FloatVector top(y_.data() + first, width);
-    top.noalias() -= L.bottomRows(height - width).transpose() * below;
-    L.topRows(width).triangularView<Eigen::Lower>().transpose().solveInPlace(top);
-  }
+  for (Index i = 0; i < n - top_first_column_; ++i) y_[top_first_column_ + i] -= top_share_[0][i] + top_share_[1][i];
+  for (Index s = top_first_supernode_; s < supernodes; ++s) forward(s, below_[0].data(), nullptr);
+  // L^T z = y: the chain first, then the parts, which read its rows only.
+  for (Index s = supernodes - 1; s >= top_first_supernode_; --s) backward(s, below_[0].data());
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
+  for (int p = 0; p < 2; ++p)
+    for (const auto& [begin, end] : parts_[p])
+      for (Index s = end - 1; s >= begin; --s) backward(s, below_[p].data());
   x.resize(n);
   for (Index k = 0; k < n; ++k) x[permutation_[k]] = y_[k];
 }

@@ -2,7 +2,10 @@
 // supernodal factor: its solve is the double one to float's round-off times
 // the condition number (and not equal to it: the copy is really used), it
 // follows each new factorization, and without the copy precondition() is solve().
+// Its solve runs the elimination tree's two halves on two threads: the answer
+// is the same on one thread, and right on a forest and on tiny matrices.
 #include <gtest/gtest.h>
+#include <omp.h>
 
 #include <vector>
 
@@ -68,6 +71,42 @@ TEST(SinglePrecisionFactor, FollowsEachFactorization) {
   Vector x;
   ASSERT_TRUE(f.solver->precondition(b, x).ok);
   EXPECT_LT((B * x - b).norm(), 1e-5 * b.norm());
+}
+
+TEST(SinglePrecisionFactor, SameAnswerOnOneThreadAndOnTwo) {
+  const SparseMatrix A = laplacian_3d(14, 0.05);
+  Factored f(A, true);
+  const Vector b = Vector::Random(A.rows());
+  const int threads = omp_get_max_threads();
+  Vector one, two;
+  omp_set_num_threads(1);
+  ASSERT_TRUE(f.solver->precondition(b, one).ok);
+  omp_set_num_threads(2);
+  ASSERT_TRUE(f.solver->precondition(b, two).ok);
+  omp_set_num_threads(threads);
+  EXPECT_EQ(one, two);
+}
+
+/// Two uncoupled blocks (an elimination forest, no single top chain) and matrices of one and two rows.
+TEST(SinglePrecisionFactor, SolvesForestsAndTinyMatrices) {
+  const SparseMatrix block = laplacian_3d(8, 0.05);
+  SparseMatrix forest(2 * block.rows(), 2 * block.rows());
+  std::vector<Eigen::Triplet<double, Index>> entries;
+  for (Index copy = 0; copy < 2; ++copy)
+    for (Index r = 0; r < block.rows(); ++r)
+      for (SparseMatrix::InnerIterator it(block, r); it; ++it)
+        entries.emplace_back(r + copy * block.rows(), it.col() + copy * block.rows(), it.value() * (1 + copy));
+  forest.setFromTriplets(entries.begin(), entries.end());
+  SparseMatrix one(1, 1), two(2, 2);
+  one.insert(0, 0) = 4.0;
+  two.insert(0, 0) = 2.0, two.insert(0, 1) = -1.0, two.insert(1, 0) = -1.0, two.insert(1, 1) = 2.0;
+  for (const SparseMatrix* A : {&forest, &one, &two}) {
+    Factored f(*A, true);
+    const Vector b = Vector::Random(A->rows());
+    Vector x;
+    ASSERT_TRUE(f.solver->precondition(b, x).ok);
+    EXPECT_LT((*A * x - b).norm(), 1e-5 * b.norm()) << A->rows() << " rows";
+  }
 }
 
 TEST(SinglePrecisionFactor, WithoutTheCopyPreconditionIsTheSolve) {
