@@ -17,6 +17,7 @@ class CholmodSolver final : public LinearSolver {
   CholmodSolver() {
     cholmod_start(&common_);
     common_.supernodal = CHOLMOD_SUPERNODAL;
+    common_.postorder = 1;  // (the default) subtrees as contiguous supernodes: SinglePrecisionFactor splits them
     common_.print = 0;
     common_.error_handler = nullptr;
   }

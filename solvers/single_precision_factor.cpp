@@ -46,7 +46,7 @@ void SinglePrecisionFactor::split_in_two() {
   const Index supernodes = static_cast<Index>(super_.size()) - 1;
   std::vector<Index> supernode_of_column(super_.back()), parent(supernodes, -1), first(supernodes);
   std::vector<std::vector<Index>> children(supernodes);
-  std::vector<std::size_t> work(supernodes);
+  std::vector<std::size_t> work(supernodes), count(supernodes, 1);
   std::iota(first.begin(), first.end(), 0);
   for (Index s = 0; s < supernodes; ++s)
     for (Index c = super_[s]; c < super_[s + 1]; ++c) supernode_of_column[c] = s;
@@ -58,10 +58,21 @@ void SinglePrecisionFactor::split_in_two() {
       parent[s] = supernode_of_column[rows_[row_start_[s] + width]];
       children[parent[s]].push_back(s);
       work[parent[s]] += work[s];
+      count[parent[s]] += count[s];
       first[parent[s]] = std::min(first[parent[s]], first[s]);
     } else {
       roots.push_back(s);
     }
+  }
+  for (auto& part : parts_) part.clear();
+  bool postordered = true;
+  for (Index s = 0; s < supernodes; ++s)
+    postordered = postordered && parent[s] != s && (parent[s] < 0 || parent[s] > s) && count[s] == s - first[s] + 1u;
+  if (!postordered) {  // CHOLMOD postorders by default; should it not, one part holds all, in order
+    parts_[0].push_back({0, supernodes});
+    top_first_supernode_ = supernodes;
+    top_first_column_ = super_.back();
+    return;
   }
   // Down from a single root while it has a single child: that chain (the top
   // separator, the last supernodes) runs alone; the subtrees below it share no
@@ -78,7 +89,6 @@ void SinglePrecisionFactor::split_in_two() {
   // The subtrees, largest first, each to the part with less work so far.
   std::sort(subtrees.begin(), subtrees.end(), [&](Index a, Index b) { return work[a] > work[b]; });
   std::array<std::size_t, 2> load{};
-  for (auto& part : parts_) part.clear();
   for (Index root : subtrees) {
     const int lighter = load[0] <= load[1] ? 0 : 1;
     parts_[lighter].push_back({first[root], root + 1});

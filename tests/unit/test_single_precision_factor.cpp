@@ -4,6 +4,7 @@
 // follows each new factorization, and without the copy precondition() is solve().
 // Its solve runs the elimination tree's two halves on two threads: the answer
 // is the same on one thread, and right on a forest and on tiny matrices.
+#include <cholmod.h>
 #include <gtest/gtest.h>
 #include <omp.h>
 
@@ -11,6 +12,7 @@
 
 #include "core/run_report.h"
 #include "solvers/linear_solver.h"
+#include "solvers/single_precision_factor.h"
 
 namespace kerf {
 namespace {
@@ -107,6 +109,30 @@ TEST(SinglePrecisionFactor, SolvesForestsAndTinyMatrices) {
     ASSERT_TRUE(f.solver->precondition(b, x).ok);
     EXPECT_LT((*A * x - b).norm(), 1e-5 * b.norm()) << A->rows() << " rows";
   }
+}
+
+// A supernodal factor written by hand whose elimination tree is not
+// postordered (supernode 1 sits between supernode 0 and its parent 2): the
+// two-part split assumes postorder, so this one must run as one part, in order.
+TEST(SinglePrecisionFactor, SolvesAFactorWhoseTreeIsNotPostordered) {
+  // L, 4 x 4, one column a supernode; below-diagonal entries L(2,0), L(3,1), L(3,2).
+  Eigen::Matrix4d L = Eigen::Matrix4d::Zero();
+  L.diagonal() << 2.0, 3.0, 1.5, 2.5;
+  L(2, 0) = 0.5, L(3, 1) = -1.0, L(3, 2) = 0.75;
+  int super[] = {0, 1, 2, 3, 4}, pi[] = {0, 2, 4, 6, 7}, px[] = {0, 2, 4, 6, 7};
+  int rows[] = {0, 2, 1, 3, 2, 3, 3}, perm[] = {0, 1, 2, 3};
+  double x[] = {L(0, 0), L(2, 0), L(1, 1), L(3, 1), L(2, 2), L(3, 2), L(3, 3)};
+  cholmod_factor factor{};
+  factor.n = 4, factor.nsuper = 4, factor.maxesize = 1;
+  factor.super = super, factor.pi = pi, factor.px = px, factor.s = rows, factor.x = x, factor.Perm = perm;
+  factor.is_super = 1, factor.is_ll = 1;
+  factor.itype = CHOLMOD_INT, factor.xtype = CHOLMOD_REAL, factor.dtype = CHOLMOD_DOUBLE;
+  SinglePrecisionFactor single;
+  ASSERT_TRUE(single.copy(factor));
+  const Vector b = Vector::Random(4);
+  Vector solution;
+  single.solve(b, solution);
+  EXPECT_LT((L * L.transpose() * solution - b).norm(), 1e-5 * b.norm());
 }
 
 TEST(SinglePrecisionFactor, WithoutTheCopyPreconditionIsTheSolve) {
