@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <numeric>
 
+#include "core/parallel_failure.h"
+
 namespace kerf {
 namespace {
 
@@ -144,20 +146,26 @@ void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   // L y = P b: the two parts side by side, each adding what it takes from the
   // top chain's rows into its own share; then the shares, then the chain. The
   // same sums in the same order on one thread or two: the same answer.
+  ParallelFailure failure;  // Eigen's products may allocate a temporary: nothing may leave a region
 #pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
-  for (int p = 0; p < 2; ++p) {
-    std::fill(top_share_[p].begin(), top_share_[p].end(), 0.0f);
-    for (const auto& [begin, end] : parts_[p])
-      for (Index s = begin; s < end; ++s) forward(s, below_[p].data(), top_share_[p].data());
-  }
+  for (int p = 0; p < 2; ++p)
+    failure.run([&] {
+      std::fill(top_share_[p].begin(), top_share_[p].end(), 0.0f);
+      for (const auto& [begin, end] : parts_[p])
+        for (Index s = begin; s < end; ++s) forward(s, below_[p].data(), top_share_[p].data());
+    });
+  failure.rethrow_if_failed();
   for (Index i = 0; i < n - top_first_column_; ++i) y_[top_first_column_ + i] -= top_share_[0][i] + top_share_[1][i];
   for (Index s = top_first_supernode_; s < supernodes; ++s) forward(s, below_[0].data(), nullptr);
   // L^T z = y: the chain first, then the parts, which read its rows only.
   for (Index s = supernodes - 1; s >= top_first_supernode_; --s) backward(s, below_[0].data());
 #pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
   for (int p = 0; p < 2; ++p)
-    for (const auto& [begin, end] : parts_[p])
-      for (Index s = end - 1; s >= begin; --s) backward(s, below_[p].data());
+    failure.run([&] {
+      for (const auto& [begin, end] : parts_[p])
+        for (Index s = end - 1; s >= begin; --s) backward(s, below_[p].data());
+    });
+  failure.rethrow_if_failed();
   x.resize(n);
   for (Index k = 0; k < n; ++k) x[permutation_[k]] = y_[k];
 }
