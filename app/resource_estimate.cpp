@@ -314,10 +314,12 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
   m.tables = tables / mb;
-  // A nonlinear body's factor also keeps a single-precision copy, to precondition with once stale.
-  const double factor_bytes = scene.material.model == MaterialModel::linear ? 8.0 : 12.0;
+  // A nonlinear body's factor, once stale, preconditions CG: with its single-precision
+  // copy, from the last 8 solutions (solvers/solution_history.h).
+  const bool stale_factor_cg = scene.material.model != MaterialModel::linear && e.factor_nonzeros > 0;
+  const double factor_bytes = stale_factor_cg ? 12.0 : 8.0, vectors = stale_factor_cg ? 38.0 : 30.0;
   m.matrix = (matrix_copies * 12.0 * e.nonzeros + factor_bytes * e.factor_nonzeros) / mb;
-  m.whole = (64.0 * e.grid_points + 8.0 * 30.0 * e.dofs) / mb;  // the grid's columns; the state and work vectors
+  m.whole = (64.0 * e.grid_points + 8.0 * vectors * e.dofs) / mb;  // the grid's columns; the state and work vectors
   return m;
 }
 

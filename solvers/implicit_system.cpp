@@ -376,7 +376,7 @@ Vector ImplicitSystem::solve_unsymmetric(const Vector& b, const std::string& whe
 
 void ImplicitSystem::remember_solution(const Vector& x) {
   previous_solution_ = x;
-  recent_solutions_.remember(x);
+  if (reuse_factorization_) recent_solutions_.remember(x);  // only the stale-factor CG starts from them
 }
 
 Vector ImplicitSystem::solve(const Vector& rhs_free, const std::string& where) {
