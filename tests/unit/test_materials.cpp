@@ -175,8 +175,9 @@ TEST(Material, PolarRotationIsTheRotationOfTheSvd) {
 // The corotational tangent is written in closed form from R and S; here it is
 // checked against the SVD's directional derivative of R (written out below, as
 // the textbooks do: dR = U W V^T, W_ij = (M_ij - M_ji) / (s_i + s_j), M = U^T dF V)
-// and against central differences, under rotations up to 2.7 rad and stretches
-// from 0.4 to 1.6, and (seeds over 40) on the nearly flat or inverted F that take the SVD path.
+// and against central differences, on F = Q (I + 0.6 X) with Q a rotation of up
+// to 2.7 rad and X's entries uniform in [-1, 1] (large, unequal stretches and
+// shears), and (seeds over 40) on the nearly flat or inverted F that take the SVD path.
 TEST(Material, CorotationalTangentUnderLargeRotationsAndStretches) {
   const MaterialLaw law(MaterialModel::corotational, 1.0e6, 0.3);
   const double lambda = law.lame().lambda, mu = law.lame().mu;
