@@ -22,7 +22,6 @@ class SinglePrecisionFactor {
   bool copy(const cholmod_factor_struct& L);
   void clear();
   bool empty() const { return super_.empty(); }
-  std::size_t entries() const { return values_.size(); }
 
   /// x = (P^T L L^T P)^-1 b, in single precision, on up to two threads (the
   /// same answer on one): the elimination tree's subtrees below its top chain
