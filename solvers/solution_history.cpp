@@ -20,7 +20,9 @@ void SolutionHistory::start(const SparseMatrix& A, const Vector& b, Vector& x0, 
   r0 = b;
   if (count_ == 0 || solutions_.rows() != b.size()) return;
   const auto V = solutions_.leftCols(count_);
-  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> AV = A * V;  // one pass over A
+  products_.resize(b.size(), capacity_);  // allocates only when the length changes
+  auto AV = products_.leftCols(count_);
+  AV.noalias() = A * V;  // one pass over A
   const Eigen::MatrixXd G = V.transpose() * AV;
   // Scaled to a unit diagonal, so that the cut-off below is relative to each
   // column's own size; columns with v^T A v <= 0 are left out.

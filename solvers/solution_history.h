@@ -16,7 +16,6 @@ class SolutionHistory {
 
   /// Adds x; solutions of another length (the dofs changed) are forgotten.
   void remember(const Vector& x);
-  void clear() { count_ = 0; }
   int size() const { return count_; }
 
   /// x0 in the span V of the kept solutions with V^T A V y = V^T b, x0 = V y:
@@ -32,7 +31,9 @@ class SolutionHistory {
   int next_ = 0;   // the column the next solution overwrites once all are in use
   // One solution a column, in no particular order (a span is all that counts);
   // row-major, so that A V reads each row of V as one contiguous run.
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> solutions_;
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  RowMajor solutions_;
+  mutable RowMajor products_;  // A V, a workspace kept between solves (n x capacity)
 };
 
 }  // namespace kerf
