@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
+#include "discretization/meshless/efg_cell_rules.h"
 #include "problem/body_plan.h"
 
 namespace kerf {
@@ -229,8 +230,8 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   }
   const MeshlessOptions& o = scene.discretization.meshless;
   e.nodes = plan.nodes_on_mesh ? mesh.nodes : lattice_nodes(scene, o.spacing);
-  e.points = plan.method->integration == Integration::background_cells ? mesh.cells * std::pow(o.quadrature_order, d)
-                                                                        : e.nodes;
+  const double per_cell = static_cast<double>(efg_cell_rule(o, d).points.size());
+  e.points = plan.method->integration == Integration::background_cells ? mesh.cells * per_cell : e.nodes;
   // Nodes in a support, three quarters of a full ball's (the boundary's share, as measured).
   const double ball =
       d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;

@@ -27,6 +27,10 @@ enum class NodePlacement { lattice, mesh };
 enum class MlsBasis { linear, quadratic };
 enum class WeightFunction { quartic };
 enum class NodalGradient { direct, smoothed };
+/// efg: each background cell's rule: the collapsed Gauss product
+/// (quadrature.order points a direction) or a fully symmetric one (exact to
+/// quadrature.degree, core/symmetric_rule_degrees.h).
+enum class CellRule { gauss, symmetric };
 /// The order of the variationally consistent correction of nodal integration's test gradients.
 enum class VciOrder { none, linear };
 /// nodal: what holds the zero-energy modes (none, the hourglass-type pair
@@ -94,7 +98,9 @@ struct MeshlessOptions {
   double support = 2.2;     // multiple of spacing
   MlsBasis basis = MlsBasis::linear;
   WeightFunction weight = WeightFunction::quartic;
-  int quadrature_order = 2;
+  CellRule quadrature_rule = CellRule::gauss;
+  int quadrature_order = 2;   // gauss: points a cell direction
+  int quadrature_degree = 5;  // symmetric: the degree integrated exactly
   /// How fix/displacement act; unset: the method's default (essential_method).
   std::optional<EssentialMethod> essential;
   NodalStabilization stabilization = NodalStabilization::hourglass;  // true: hourglass, false: none
@@ -260,6 +266,7 @@ KERF_ENUM_NAMES(MlsBasis, "linear", "quadratic");
 KERF_ENUM_NAMES(WeightFunction, "quartic");
 KERF_ENUM_NAMES(EssentialMethod, "penalty", "nitsche", "parameters");
 KERF_ENUM_NAMES(NodalGradient, "direct", "smoothed");
+KERF_ENUM_NAMES(CellRule, "gauss", "symmetric");
 KERF_ENUM_NAMES(VciOrder, "none", "linear");
 KERF_ENUM_NAMES(NodalStabilization, "none", "hourglass", "nsni");
 KERF_ENUM_NAMES(CutCells, "auto", "whole", "split");

@@ -97,7 +97,9 @@ json scene_to_json(const Scene& s) {
         {"support", ml.support},
         {"basis", to_string(ml.basis)},
         {"weight", to_string(ml.weight)},
-        {"quadrature", {{"order", ml.quadrature_order}}},
+        {"quadrature", ml.quadrature_rule == CellRule::gauss
+                           ? json{{"rule", "gauss"}, {"order", ml.quadrature_order}}
+                           : json{{"rule", "symmetric"}, {"degree", ml.quadrature_degree}}},
         {"essential", to_string(essential_method(ml, d.method))},
         {"stabilization", to_string(ml.stabilization)},
         {"gradient", to_string(ml.gradient)},

@@ -187,8 +187,16 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     if (m.has("weight")) o.weight = m["weight"].enumeration<WeightFunction>();
     if (m.has("quadrature")) {
       YamlField q = m["quadrature"];
-      q.allow_only({"order"});
+      q.allow_only({"rule", "order", "degree"});
+      if (q.has("rule")) o.quadrature_rule = q["rule"].enumeration<CellRule>();
+      const bool symmetric = o.quadrature_rule == CellRule::symmetric;
+      if (q.has("order") && symmetric)
+        q["order"].fail("value " + q["order"].value_text() + " is for rule: gauss, but rule is 'symmetric'; expected degree");
+      if (q.has("degree") && !symmetric)
+        q["degree"].fail("value " + q["degree"].value_text() +
+                         " is for rule: symmetric, but rule is 'gauss' (the default); expected order, or rule: symmetric");
       if (q.has("order")) o.quadrature_order = q["order"].integer();
+      if (q.has("degree")) o.quadrature_degree = q["degree"].integer();
     }
     if (m.has("essential"))
       o.essential = m["essential"].enumeration<EssentialMethod>();

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/symmetric_rule_degrees.h"
 
 namespace kerf {
 namespace {
@@ -122,6 +123,14 @@ void validate_discretization(const Refusal& r, const DiscretizationOptions& d, i
   r.in_range(m.support > 1.0, "discretization.meshless.support", m.support, "support > 1 (a multiple of the spacing)");
   r.in_range(m.quadrature_order >= 1 && m.quadrature_order <= 8, "discretization.meshless.quadrature.order",
              m.quadrature_order, "1 <= order <= 8");
+  if (m.quadrature_rule == CellRule::symmetric) {
+    const auto degrees = symmetric_rule_degrees(dim);
+    std::string listed;
+    for (int degree : degrees) listed += (listed.empty() ? "" : ", ") + std::to_string(degree);
+    r.in_range(std::find(degrees.begin(), degrees.end(), m.quadrature_degree) != degrees.end(),
+               "discretization.meshless.quadrature.degree", m.quadrature_degree,
+               "one of " + listed + " (the degrees with a symmetric rule in dimension " + std::to_string(dim) + ")");
+  }
   if (m.nitsche_safety)
     r.in_range(*m.nitsche_safety >= 1.0 && *m.nitsche_safety <= 1e6, "discretization.meshless.nitsche_safety",
                *m.nitsche_safety, "1 <= nitsche_safety <= 1e6 (alpha over its local estimate)");

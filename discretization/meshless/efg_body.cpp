@@ -6,7 +6,7 @@
 #include <limits>
 
 #include "core/check.h"
-#include "discretization/fem/simplex_quadrature.h"
+#include "discretization/meshless/efg_cell_rules.h"
 #include "discretization/meshless/integration_constraint.h"
 #include "problem/selection.h"
 
@@ -19,10 +19,10 @@ struct CellQuadrature {
   Index per_cell = 0;
 };
 
-/// Collapsed Gauss points (n per direction) on every straight cell of the mesh.
-CellQuadrature cell_quadrature(const Mesh& mesh, int n) {
+/// The scene's rule (efg_cell_rule) on every straight cell of the mesh.
+CellQuadrature cell_quadrature(const Mesh& mesh, const MeshlessOptions& options) {
   const int dim = mesh.dimension;
-  QuadratureRule rule = collapsed_gauss(dim, n);
+  const QuadratureRule rule = efg_cell_rule(options, dim);
   CellQuadrature out;
   out.per_cell = static_cast<Index>(rule.points.size());
   for (Index c = 0; c < mesh.cell_count(); ++c) {
@@ -84,9 +84,9 @@ std::vector<char> cells_of_rank(const MeshlessDomain& domain, const CellQuadratu
 }
 
 /// This rank's cells' Gauss points (cells_of_rank) and their shape functions.
-PointIntegration rank_points(const MeshlessDomain& domain, int order, RankShare share,
+PointIntegration rank_points(const MeshlessDomain& domain, const MeshlessOptions& options, RankShare share,
                              NeighborLists& others_reaching_own) {
-  CellQuadrature q = cell_quadrature(domain.background(), order);
+  CellQuadrature q = cell_quadrature(domain.background(), options);
   const std::vector<char> mine = cells_of_rank(domain, q, share, others_reaching_own);
   if (share.distributed()) {
     Index kept = 0;
@@ -104,7 +104,7 @@ PointIntegration rank_points(const MeshlessDomain& domain, int order, RankShare 
 EfgBody::EfgBody(const Scene& scene, MeshlessDomain domain, const MpiContext& mpi)
     : MeshlessBody(scene, std::move(domain)),
       mpi_(mpi),
-      points_(rank_points(domain_, scene.discretization.meshless.quadrature_order, mpi.ranks, others_reaching_own_)) {
+      points_(rank_points(domain_, scene.discretization.meshless, mpi.ranks, others_reaching_own_)) {
   reduced_basis_points_ =
       static_cast<Index>(mpi_.sum_on_every_rank(static_cast<double>(points_.shapes().reduced_basis_points())));
   stress_.assign(points_.point_count(), Mat3::Zero());
@@ -125,7 +125,7 @@ void EfgBody::build_constraints(const Scene& scene) {
     return;
   }
   constraints_ = std::make_unique<WeakBoundaryConditions>(scene, domain_, law_, essential == EssentialMethod::nitsche,
-                                                          scene.discretization.meshless.quadrature_order,
+                                                          efg_facet_rule(scene.discretization.meshless, domain_.dimension()),
                                                           volume_points());
   dirichlet_ = domain_.nodal_constraints(
       scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });

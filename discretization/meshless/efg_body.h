@@ -1,7 +1,7 @@
 #pragma once
-// Element-free Galerkin: MLS shape functions, the weak form integrated by
-// collapsed Gauss rules (meshless.quadrature.order points per direction) on the
-// cells of a background mesh, consistent mass. MLS does not interpolate, so
+// Element-free Galerkin: MLS shape functions, the weak form integrated on the
+// cells of a background mesh by the scene's rule (efg_cell_rules.h: collapsed
+// Gauss or symmetric), consistent mass. MLS does not interpolate, so
 // fix/displacement on planes and boxes are imposed weakly on the boundary
 // faces (weak_boundary_conditions.h: Nitsche or penalty), or, with `essential:
 // parameters`, on the nodal parameters of the selected nodes; `point`

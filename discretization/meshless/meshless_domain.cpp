@@ -315,9 +315,12 @@ std::vector<Index> MeshlessDomain::facets_in(const Selection& selection, bool re
 }
 
 BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, int points_per_direction) const {
-  const int dim = dimension(), fdim = dim - 1;
+  return boundary_points(facets, collapsed_gauss(dimension() - 1, points_per_direction));
+}
+
+BoundaryPoints MeshlessDomain::boundary_points(std::span<const Index> facets, const QuadratureRule& rule) const {
+  const int fdim = dimension() - 1;
   const Mesh& mesh = boundary_mesh();
-  QuadratureRule rule = collapsed_gauss(fdim, points_per_direction);
   BoundaryPoints out;
   for (Index f : facets) {
     auto fn = facets_.facet(f);

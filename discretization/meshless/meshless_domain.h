@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "discretization/body_capabilities.h"
+#include "discretization/fem/simplex_quadrature.h"
 #include "discretization/enrichment/cut_weights.h"
 #include "discretization/meshless/boundary_quadrature.h"
 #include "discretization/meshless/cut_cell_integration.h"
@@ -135,6 +136,8 @@ class MeshlessDomain {
   std::vector<Index> facets_in(const Selection& selection, bool required = true) const;
   /// Collapsed Gauss points (n per direction) on the straight facets.
   BoundaryPoints boundary_points(std::span<const Index> facets, int points_per_direction) const;
+  /// `rule` (on the reference facet) on the straight facets.
+  BoundaryPoints boundary_points(std::span<const Index> facets, const QuadratureRule& rule) const;
 
   /// Collapsed Gauss points on the facets with a corner in `region`, with their MLS interpolation.
   SurfaceSamples surface_samples(const Box& region, int points_per_direction) const;

@@ -52,7 +52,7 @@ NodalBody::NodalBody(const Scene& scene, MeshlessDomain domain, RankShare share)
   if (essential != EssentialMethod::parameters)
     // 2 points a direction: the closed boundary's rule there (integration constraint).
     constraints_ = std::make_unique<WeakBoundaryConditions>(
-        scene, domain_, law_, essential == EssentialMethod::nitsche, 2,
+        scene, domain_, law_, essential == EssentialMethod::nitsche, collapsed_gauss(domain_.dimension() - 1, 2),
         WeakBoundaryConditions::VolumePoints{domain_.at_nodes(), nodes.volume, nodes.positions});
   integrate_cut_cells();
   share_nodes(share);

@@ -11,7 +11,8 @@
 namespace kerf {
 
 WeakBoundaryConditions::WeakBoundaryConditions(const Scene& scene, const MeshlessDomain& domain, const MaterialLaw& law,
-                                               bool nitsche, int points_per_direction, const VolumePoints& volume)
+                                               bool nitsche, const QuadratureRule& facet_rule,
+                                               const VolumePoints& volume)
     : domain_(domain), law_(law), nitsche_(nitsche) {
   const NodeSet& nodes = domain.nodes();
   for (const BoundaryCondition& bc : scene.boundary) {
@@ -19,7 +20,7 @@ WeakBoundaryConditions::WeakBoundaryConditions(const Scene& scene, const Meshles
     Constraint c;
     c.where = bc.where;
     std::vector<Index> facets = domain.facets_in(bc.select);
-    c.points = domain.boundary_points(facets, points_per_direction);
+    c.points = domain.boundary_points(facets, facet_rule);
     c.shapes = domain.shapes_at(c.points.position, "the boundary quadrature point");
     const std::size_t per_facet = c.points.position.size() / facets.size();
     for (std::size_t q = 0; q < c.points.position.size(); ++q) {

@@ -61,10 +61,9 @@ class WeakBoundaryConditions {
   };
 
   /// The scene's fix/displacement conditions on planes and boxes (`point`
-  /// selections are left to nodal constraints), `points_per_direction`
-  /// Gauss points a direction on each face.
+  /// selections are left to nodal constraints), `facet_rule` on each face.
   WeakBoundaryConditions(const Scene& scene, const MeshlessDomain& domain, const MaterialLaw& law, bool nitsche,
-                         int points_per_direction, const VolumePoints& volume);
+                         const QuadratureRule& facet_rule, const VolumePoints& volume);
 
   /// The constraints reaching node `node`, for a failed factorization's
   /// message: which scene items, how (Nitsche or penalty), their alpha; "" when none.

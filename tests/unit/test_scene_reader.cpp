@@ -133,6 +133,48 @@ TEST(SceneReader, CutCellsTakeTheirNamesAndAutoResolvesByGrowth) {
   expect_contains(m, "whole");
 }
 
+TEST(SceneReader, EfgCellRulesTakeTheirKeysAndRefuseTheOtherRulesKey) {
+  const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
+  auto read = [&](const std::string& quadrature) {
+    return testing::scene_from_text(box + "discretization: {method: efg, meshless: {quadrature: " + quadrature + "}}\n")
+        .discretization.meshless;
+  };
+  const MeshlessOptions defaults = testing::scene_from_text(box).discretization.meshless;
+  EXPECT_EQ(defaults.quadrature_rule, CellRule::gauss);
+  EXPECT_EQ(defaults.quadrature_order, 2);
+  EXPECT_EQ(read("{order: 4}").quadrature_order, 4);
+  EXPECT_EQ(read("{rule: symmetric}").quadrature_rule, CellRule::symmetric);
+  EXPECT_EQ(read("{rule: symmetric}").quadrature_degree, 5);
+  EXPECT_EQ(read("{rule: symmetric, degree: 2}").quadrature_degree, 2);
+  // Each rule's key beside the other rule would be ignored: refused by key and value.
+  auto refusal = [&](const std::string& quadrature) {
+    return testing::scene_refusal(box + "discretization: {method: efg, meshless: {quadrature: " + quadrature + "}}\n");
+  };
+  std::string why = refusal("{rule: symmetric, order: 3}");
+  expect_contains(why, "discretization.meshless.quadrature.order");
+  expect_contains(why, "'3'");
+  why = refusal("{degree: 5}");
+  expect_contains(why, "discretization.meshless.quadrature.degree");
+  expect_contains(why, "rule: symmetric");
+  // Degrees without a rule in the scene's dimension: refused, listing those there are.
+  expect_contains(refusal("{rule: symmetric, degree: 4}"), "one of 1, 2, 5");
+  expect_contains(testing::scene_refusal("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\n"
+                                         "discretization: {method: efg, meshless: {quadrature: "
+                                         "{rule: symmetric, degree: 3}}}\n"),
+                  "one of 1, 2, 4, 5");
+  EXPECT_EQ(testing::scene_from_text("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\n"
+                                     "discretization: {method: efg, meshless: {quadrature: {rule: symmetric, degree: 4}}}\n")
+                .discretization.meshless.quadrature_degree,
+            4);
+  // The resolved scene names the rule and only its own key, and reads back.
+  for (const std::string quadrature : {"{order: 3}", "{rule: symmetric, degree: 2}"}) {
+    const auto j = scene_to_json(
+        testing::scene_from_text(box + "discretization: {method: efg, meshless: {quadrature: " + quadrature + "}}\n"));
+    EXPECT_EQ(scene_to_json(testing::scene_from_text(j.dump())), j) << quadrature;
+    EXPECT_EQ(j["discretization"]["meshless"]["quadrature"].size(), 2u) << quadrature;
+  }
+}
+
 TEST(SceneReader, MissingKeyPointsAtItsParentNotTheCommandLine) {
   std::string m = testing::scene_refusal("domain: {box: {min: [0,0,0], max: [1,1,1]}}\nboundary:\n  - select: {plane: {axis: x}}\n    fix: [x]\n");
   expect_contains(m, "test.yaml:3:");

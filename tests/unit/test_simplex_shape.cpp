@@ -1,10 +1,9 @@
 // Lagrange shape functions on simplices: Kronecker property, partition of
-// unity, gradients by finite differences; quadrature exactness; gmsh node order.
+// unity, gradients by finite differences; gmsh node order.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
 #include "support/test_support.h"
 
@@ -52,27 +51,6 @@ TEST_P(SimplexShapeTest, GradientsMatchFiniteDifferences) {
 INSTANTIATE_TEST_SUITE_P(AllSimplices, SimplexShapeTest,
                          ::testing::Values(Shape{1, 1}, Shape{1, 2}, Shape{2, 1}, Shape{2, 2}, Shape{3, 1},
                                            Shape{3, 2}));
-
-double factorial(int n) { return n <= 1 ? 1.0 : n * factorial(n - 1); }
-
-TEST(SimplexQuadrature, IntegratesMonomialsExactly) {
-  for (int dim = 1; dim <= 3; ++dim)
-    for (int degree = 0; degree <= 6; ++degree) {
-      QuadratureRule rule = simplex_quadrature(dim, degree);
-      for (int a = 0; a <= degree; ++a)
-        for (int b = 0; b <= (dim > 1 ? degree - a : 0); ++b)
-          for (int c = 0; c <= (dim > 2 ? degree - a - b : 0); ++c) {
-            double numeric = 0.0;
-            for (std::size_t q = 0; q < rule.points.size(); ++q) {
-              const Vec3& x = rule.points[q];
-              numeric += rule.weights[q] * std::pow(x[0], a) * std::pow(x[1], b) * std::pow(x[2], c);
-            }
-            // Integral of x^a y^b z^c over the unit simplex.
-            double exact = factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + dim);
-            EXPECT_NEAR(numeric, exact, 1e-14) << "dim " << dim << " degree " << degree << " monomial " << a << b << c;
-          }
-    }
-}
 
 TEST(SimplexShape, MidEdgeNodesOfGmshMeshesSitOnTheirEdges) {
   for (int dim : {2, 3}) {
