@@ -112,7 +112,7 @@ void ImplicitSystem::read_mass() {
   }
   SparseMatrix mass = stiffness_;
   std::fill(mass.valuePtr(), mass.valuePtr() + mass.nonZeros(), 0.0);
-  mechanics_.consistent_mass(add_into(mass));
+  mechanics_.consistent_mass(add_into(mass, 1.0, mechanics_.dofs_per_node()));
   mass_values_.assign(mass.valuePtr(), mass.valuePtr() + mass.nonZeros());
 }
 
@@ -135,7 +135,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
       SparseMatrix K = stiffness_;
       std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
       const DiscreteBody& body = mechanics_.body();
-      body.tangent(Vector::Zero(body.dof_count()), add_into(K), nullptr);
+      body.tangent(Vector::Zero(body.dof_count()), add_into(K, 1.0, body.dofs_per_node()), nullptr);
       linear_values_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
     }
     Eigen::Map<const SparseMatrix> K(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
@@ -148,7 +148,7 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
       return;
     }
     std::copy(linear_values_.begin(), linear_values_.end(), stiffness_.valuePtr());
-    const BlockSink sink = add_into(stiffness_);
+    const BlockSink sink = add_into(stiffness_, 1.0, mechanics_.dofs_per_node());
     mechanics_.add_terms(u, f, &sink);
     if (parts) parts->sum(f);
     stiffness_assembled(u);

@@ -103,7 +103,7 @@ void MechanicalSystem::tangent(const Vector& u, const BlockSink& sink, Vector* f
 }
 
 void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f) const {
-  const BlockSink sink = add_into(K);
+  const BlockSink sink = add_into(K, 1.0, dofs_per_node());
   if (const MatrixAssembly* direct = capability<MatrixAssembly>(body_)) {
     const CsrView view = csr_view(K);
     tangent_with([&](const Vector& body_u, Vector* body_f) { direct->add_tangent_into(body_u, view, body_f); }, u,
@@ -115,7 +115,7 @@ void MechanicalSystem::tangent_into(const Vector& u, SparseMatrix& K, Vector* f)
 }
 
 void MechanicalSystem::galerkin_tangent_into(const Vector& u, SparseMatrix& K) const {
-  const BlockSink sink = add_into(K);
+  const BlockSink sink = add_into(K, 1.0, dofs_per_node());
   tangent_with([&](const Vector& body_u, Vector* body_f) {
     body_.galerkin_tangent(body_u, sink);
     if (body_f) body_.internal_force(body_u, *body_f);

@@ -22,8 +22,9 @@ SparseMatrix build_pattern(int dofs_per_node, Index n,
 
 /// A sink adding scale * block into `matrix` (whose pattern holds the block's
 /// nonzero entries; entries outside it must be zero and are skipped);
-/// thread-safe for blocks that share no row.
-BlockSink add_into(SparseMatrix& matrix, double scale = 1.0);
+/// thread-safe for blocks that share no row. With `dofs_per_node` 2 or 3, a
+/// block of whole nodes is written a node pair at a time (one search each).
+BlockSink add_into(SparseMatrix& matrix, double scale = 1.0, int dofs_per_node = 1);
 
 /// The matrix's arrays as a body writes into them (MatrixAssembly).
 CsrView csr_view(SparseMatrix& matrix);

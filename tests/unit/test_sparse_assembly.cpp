@@ -126,5 +126,50 @@ TEST(SparseAssembly, ZerosOutsideThePatternAreSkippedAndNonzerosRefused) {
   EXPECT_THROW(add_into(m)(dofs, block), Error);
 }
 
+/// The dofs of `nodes` (3 a node), in their order.
+std::vector<Index> node_dofs(const std::vector<Index>& nodes) {
+  std::vector<Index> dofs;
+  for (Index a : nodes)
+    for (Index k = 0; k < 3; ++k) dofs.push_back(3 * a + k);
+  return dofs;
+}
+
+// The node-pair path (dofs_per_node 3) writes what the entry path writes, on
+// whole and partial (an MPI rank's) patterns, with nodes in any order, pairs
+// outside the pattern holding zeros, and blocks that are not whole nodes.
+TEST(SparseAssembly, NodePairsLandWhereTheEntryPathPutsThem) {
+  const Index nodes = 20;
+  auto windows = [&](const CouplingVisitor& visit) {  // nodes k..k+3, and every node with node 0
+    for (Index k = 0; k + 3 < nodes; ++k) visit(node_dofs({k, k + 1, k + 2, k + 3}));
+    for (Index k = 1; k < nodes; ++k) visit(node_dofs({0, k}));
+  };
+  const std::vector<std::vector<Index>> blocks = {
+      node_dofs({0, 3, 4, 5}), node_dofs({7, 5, 6, 0}), node_dofs({2, 9, 3, 4, 5, 1}), node_dofs({19, 0, 18, 17}),
+      {4, 5, 6, 7, 8, 9}, {10, 3, 11, 12}};  // the last two: not whole nodes (offset by one; a lone dof)
+  for (const std::vector<Index>& kept : {std::vector<Index>{}, std::vector<Index>{2, 3, 5, 18}}) {
+    SparseMatrix by_entry = build_pattern(3, 3 * nodes, windows, kept), by_node = by_entry;
+    const Eigen::MatrixXd present = Eigen::MatrixXd(by_entry).cwiseAbs();  // pattern: values start at zero
+    SparseMatrix marks = by_entry;
+    std::fill(marks.valuePtr(), marks.valuePtr() + marks.nonZeros(), 1.0);
+    const Eigen::MatrixXd in_pattern(marks);
+    EXPECT_EQ(present.sum(), 0.0);
+    for (const auto& dofs : blocks) {
+      std::vector<double> block = numbered_block(dofs);
+      for (std::size_t i = 0; i < dofs.size(); ++i)
+        for (std::size_t j = 0; j < dofs.size(); ++j)
+          if (in_pattern(dofs[i], dofs[j]) == 0.0) block[i * dofs.size() + j] = 0.0;
+      add_into(by_entry, 0.5)(dofs, block);
+      add_into(by_node, 0.5, 3)(dofs, block);
+    }
+    const Eigen::MatrixXd expected(by_entry), got(by_node);
+    EXPECT_EQ((got - expected).cwiseAbs().maxCoeff(), 0.0) << kept.size() << " kept";
+    EXPECT_GT(got.cwiseAbs().sum(), 0.0);
+    // A nonzero outside the pattern is refused on this path too.
+    const std::vector<Index> dofs = node_dofs({1, 9});
+    std::vector<double> block(dofs.size() * dofs.size(), 1.0);
+    EXPECT_THROW(add_into(by_node, 1.0, 3)(dofs, block), Error);
+  }
+}
+
 }  // namespace
 }  // namespace kerf
