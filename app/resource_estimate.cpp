@@ -230,8 +230,9 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   }
   const MeshlessOptions& o = scene.discretization.meshless;
   e.nodes = plan.nodes_on_mesh ? mesh.nodes : lattice_nodes(scene, o.spacing);
-  const double per_cell = static_cast<double>(efg_cell_rule(o, d).points.size());
-  e.points = plan.method->integration == Integration::background_cells ? mesh.cells * per_cell : e.nodes;
+  e.points = plan.method->integration == Integration::background_cells
+                 ? mesh.cells * static_cast<double>(efg_cell_rule(o, d).points.size())
+                 : e.nodes;
   // Nodes in a support, three quarters of a full ball's (the boundary's share, as measured).
   const double ball =
       d == 3 ? 4.0 / 3.0 * std::numbers::pi * std::pow(o.support, 3) : std::numbers::pi * o.support * o.support;

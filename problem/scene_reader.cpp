@@ -190,11 +190,14 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
       q.allow_only({"rule", "order", "degree"});
       if (q.has("rule")) o.quadrature_rule = q["rule"].enumeration<CellRule>();
       const bool symmetric = o.quadrature_rule == CellRule::symmetric;
+      // Each rule's key beside the other rule would be ignored.
       if (q.has("order") && symmetric)
-        q["order"].fail("value " + q["order"].value_text() + " is for rule: gauss, but rule is 'symmetric'; expected degree");
+        q["order"].fail("value " + q["order"].value_text() +
+                        " is for rule: gauss, but rule is 'symmetric'; expected degree");
       if (q.has("degree") && !symmetric)
         q["degree"].fail("value " + q["degree"].value_text() +
-                         " is for rule: symmetric, but rule is 'gauss' (the default); expected order, or rule: symmetric");
+                         " is for rule: symmetric, but rule is 'gauss' (the default); expected order, or rule: "
+                         "symmetric");
       if (q.has("order")) o.quadrature_order = q["order"].integer();
       if (q.has("degree")) o.quadrature_degree = q["degree"].integer();
     }

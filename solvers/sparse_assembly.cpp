@@ -143,7 +143,8 @@ struct SinkTarget {
 
 void SinkTarget::add_block(std::span<const Index> dofs, std::span<const double> block) const {
   const std::size_t n = dofs.size();
-  thread_local std::vector<Index> offsets;  // position of column dofs[j] relative to the row start (absent: the one before)
+  // The position of column dofs[j] relative to the row start (absent: the one before).
+  thread_local std::vector<Index> offsets;
   if (offsets.size() < n) offsets.resize(n);
   Index* offset = offsets.data();
   for (std::size_t i = 0; i < n; ++i) {

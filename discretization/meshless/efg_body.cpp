@@ -124,9 +124,9 @@ void EfgBody::build_constraints(const Scene& scene) {
     dirichlet_ = domain_.nodal_constraints(scene, [](const BoundaryCondition&) { return true; });
     return;
   }
+  const QuadratureRule facet_rule = efg_facet_rule(scene.discretization.meshless, domain_.dimension());
   constraints_ = std::make_unique<WeakBoundaryConditions>(scene, domain_, law_, essential == EssentialMethod::nitsche,
-                                                          efg_facet_rule(scene.discretization.meshless, domain_.dimension()),
-                                                          volume_points());
+                                                          facet_rule, volume_points());
   dirichlet_ = domain_.nodal_constraints(
       scene, [](const BoundaryCondition& bc) { return bc.select.kind == Selection::Kind::point; });
 }

@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "discretization/body_capabilities.h"
-#include "discretization/fem/simplex_quadrature.h"
 #include "discretization/enrichment/cut_weights.h"
+#include "discretization/fem/simplex_quadrature.h"
 #include "discretization/meshless/boundary_quadrature.h"
 #include "discretization/meshless/cut_cell_integration.h"
 #include "discretization/meshless/node_cell_search.h"

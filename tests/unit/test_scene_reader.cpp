@@ -163,7 +163,8 @@ TEST(SceneReader, EfgCellRulesTakeTheirKeysAndRefuseTheOtherRulesKey) {
                                          "{rule: symmetric, degree: 3}}}\n"),
                   "one of 1, 2, 4, 5");
   EXPECT_EQ(testing::scene_from_text("dimension: 2\ndomain: {box: {min: [0,0], max: [1,1]}}\n"
-                                     "discretization: {method: efg, meshless: {quadrature: {rule: symmetric, degree: 4}}}\n")
+                                     "discretization: {method: efg, meshless: {quadrature: "
+                                     "{rule: symmetric, degree: 4}}}\n")
                 .discretization.meshless.quadrature_degree,
             4);
   // The resolved scene names the rule and only its own key, and reads back.

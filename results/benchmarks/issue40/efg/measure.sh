@@ -6,17 +6,21 @@
 K=${1:-build/cli/kerf}
 S=scenes/cantilever.yaml
 out=$(mktemp -d)
+efg="--set discretization.method=efg"
+gauss3="--set discretization.meshless.quadrature.order=3"
+symmetric="--set discretization.meshless.quadrature.rule=symmetric"
 declare -A runs=(
   [tet10_3.33mm]="--set discretization.fem.size=0.00333"
   [tet10_2.5mm]="--set discretization.fem.size=0.0025"
-  [efg_gauss3_2.5mm]="--set discretization.method=efg --set discretization.meshless.quadrature.order=3 --set discretization.meshless.spacing=0.0025"
-  [efg_symmetric5_2.5mm]="--set discretization.method=efg --set discretization.meshless.quadrature.rule=symmetric --set discretization.meshless.spacing=0.0025"
-  [efg_gauss3_2mm]="--set discretization.method=efg --set discretization.meshless.quadrature.order=3 --set discretization.meshless.spacing=0.002"
-  [efg_symmetric5_2mm]="--set discretization.method=efg --set discretization.meshless.quadrature.rule=symmetric --set discretization.meshless.spacing=0.002"
+  [efg_gauss3_2.5mm]="$efg $gauss3 --set discretization.meshless.spacing=0.0025"
+  [efg_symmetric5_2.5mm]="$efg $symmetric --set discretization.meshless.spacing=0.0025"
+  [efg_gauss3_2mm]="$efg $gauss3 --set discretization.meshless.spacing=0.002"
+  [efg_symmetric5_2mm]="$efg $symmetric --set discretization.meshless.spacing=0.002"
 )
 for rep in 1 2 3; do
   for name in tet10_3.33mm tet10_2.5mm efg_gauss3_2.5mm efg_symmetric5_2.5mm efg_gauss3_2mm efg_symmetric5_2mm; do
-    /usr/bin/time -f "%e" -o "$out/time" $K run $S --set output.vtk=false --out "$out/$name" ${runs[$name]} > /dev/null 2>&1
+    /usr/bin/time -f "%e" -o "$out/time" \
+      $K run $S --set output.vtk=false --out "$out/$name" ${runs[$name]} > /dev/null 2>&1
     /usr/bin/python3 - "$out/$name/summary.json" "$(cat "$out/time")" "$name" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); p = d["timing"]["phases"]
