@@ -118,19 +118,24 @@ struct SinkTarget {
   double* values;
   double scale;
 
-  /// Adds scale * value at (row, column) found by bisection; a zero outside the pattern is skipped.
-  void add_entry(Index row, Index column, double value) const {
-    const Index* begin = inner + outer[row];
-    const Index* end = inner + outer[row + 1];
-    const Index* at = std::lower_bound(begin, end, column);
-    if (at != end && *at == column) {
-      values[at - inner] += scale * value;
-      return;
-    }
-    // A block may span node pairs the pattern leaves out (a cell's points
-    // summed over the union of their nodes) if it holds zeros there.
+  /// A block may span node pairs the pattern leaves out (a cell's points
+  /// summed over the union of their nodes) if it holds zeros there.
+  static void refuse_nonzero_outside(Index row, Index column, double value) {
     KERF_CHECK(value == 0.0, "internal: a block writes ", value, " at (", row, ", ", column,
                "), outside the matrix's pattern");
+  }
+
+  /// Adds scale * in[m] at (row, column + m) for m < count, found by one bisection.
+  void add_run(Index row, Index column, const double* in, int count) const {
+    const Index* end = inner + outer[row + 1];
+    const Index* at = std::lower_bound(inner + outer[row], end, column);
+    for (int m = 0; m < count; ++m) {
+      if (at != end && *at == column + m) {
+        values[at++ - inner] += scale * in[m];
+        continue;
+      }
+      refuse_nonzero_outside(row, column + m, in[m]);
+    }
   }
 
   /// Any block: each entry sought in its row.
@@ -170,7 +175,7 @@ void SinkTarget::add_block(std::span<const Index> dofs, std::span<const double> 
         values[outer[row] + at] += scale * block[i * n + j];
         continue;
       }
-      add_entry(row, column, block[i * n + j]);  // absent: refused unless zero
+      refuse_nonzero_outside(row, column, block[i * n + j]);
       offset[j] = at - 1;
     }
   }
@@ -199,8 +204,8 @@ void SinkTarget::add_node_block(std::span<const Index> dofs, std::span<const dou
       from = whole ? at + W : at;  // the next, larger column lies at or after it
       for (int k = 0; k < W; ++k) {
         const double* in = block.data() + (W * t + k) * n + W * s;
-        if (!whole) {
-          for (int m = 0; m < W; ++m) add_entry(r + k, c + m, in[m]);
+        if (!whole) {  // a pair the pattern leaves out, or rows unlike the node's first
+          add_run(r + k, c, in, W);
           continue;
         }
         double* out = values + outer[r + k] + at;

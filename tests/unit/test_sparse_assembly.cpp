@@ -169,6 +169,25 @@ TEST(SparseAssembly, NodePairsLandWhereTheEntryPathPutsThem) {
     std::vector<double> block(dofs.size() * dofs.size(), 1.0);
     EXPECT_THROW(add_into(by_node, 1.0, 3)(dofs, block), Error);
   }
+  // A pattern whose rows of one node differ (not build_pattern's): each row
+  // of such a node is written by its own search, present columns and all.
+  std::vector<Eigen::Triplet<double, Index>> entries;
+  for (Index r = 0; r < 9; ++r)
+    for (Index c = 0; c < 9; ++c)
+      if (r != 4 || c < 3 || c > 6) entries.emplace_back(r, c, 0.0);  // row 4 lacks node 1's columns 3..5 and 6
+  SparseMatrix by_entry(9, 9);
+  by_entry.setFromTriplets(entries.begin(), entries.end());
+  by_entry.makeCompressed();
+  SparseMatrix by_node = by_entry;
+  const std::vector<Index> dofs = node_dofs({2, 1, 0});
+  std::vector<double> block = numbered_block(dofs);
+  for (std::size_t i = 0; i < dofs.size(); ++i)
+    for (std::size_t j = 0; j < dofs.size(); ++j)
+      if (dofs[i] == 4 && dofs[j] >= 3 && dofs[j] <= 6) block[i * dofs.size() + j] = 0.0;
+  add_into(by_entry)(dofs, block);
+  add_into(by_node, 1.0, 3)(dofs, block);
+  EXPECT_EQ((Eigen::MatrixXd(by_node) - Eigen::MatrixXd(by_entry)).cwiseAbs().maxCoeff(), 0.0);
+  EXPECT_EQ(Eigen::MatrixXd(by_node)(3, 5), 100.0 * 3 + 5);
 }
 
 }  // namespace
