@@ -11,7 +11,7 @@
 
 namespace kerf {
 
-enum class LinearSolverKind { cholmod, petsc, cg, ldlt };
+enum class LinearSolverKind { cholmod, petsc, cg, ldlt, p_multigrid };
 
 struct LinearBackend {
   LinearSolverKind kind;
@@ -21,11 +21,12 @@ struct LinearBackend {
   const char* stage;  // the summary's stage it starts ("" for none)
 };
 
-inline constexpr std::array<LinearBackend, 4> linear_backends{{
+inline constexpr std::array<LinearBackend, 5> linear_backends{{
     {LinearSolverKind::cholmod, "cholmod", true, false, ""},
     {LinearSolverKind::petsc, "petsc", false, true, "petsc"},
     {LinearSolverKind::cg, "cg", false, false, ""},
     {LinearSolverKind::ldlt, "ldlt", true, false, ""},
+    {LinearSolverKind::p_multigrid, "p_multigrid", false, false, ""},
 }};
 
 static_assert(rows_follow_enum(linear_backends, &LinearBackend::kind),

@@ -117,6 +117,8 @@ class MeshedBody {
  public:
   virtual ~MeshedBody() = default;
   virtual const Mesh& mesh() const = 0;
+  /// Whether cell c integrates only a fragment of itself (a split cell's copy, fem: split).
+  virtual bool fragment_cell(Index c) const { return false; }
 };
 
 /// A row-major CSR matrix's arrays (full symmetric storage), as a body sees them.

@@ -324,6 +324,18 @@ void validate_averaged_nodal(const Refusal& r, const Scene& scene) {
                 "volumetric: element");
 }
 
+/// p-multigrid's coarse space is the linear functions of quadratic finite elements.
+void validate_p_multigrid(const Refusal& r, const Scene& scene) {
+  const DiscretizationOptions& d = scene.discretization;
+  if (scene.solve.linear_solver != LinearSolverKind::p_multigrid || !scene.solve.solves_linear_systems()) return;
+  const bool quadratic_fem = d.method == Method::fem && element_descriptor(d.fem.element).order == 2;
+  r.require(quadratic_fem, "solve.linear_solver",
+            "value 'p_multigrid' with method '" + std::string(to_string(d.method)) +
+                (d.method == Method::fem ? "' and element '" + std::string(to_string(d.fem.element)) : std::string()) +
+                "': its coarse level is the linear functions of quadratic cells; expected method: fem with element "
+                "tet10 or tri6, or another linear_solver (cholmod, cg, petsc, ldlt)");
+}
+
 }  // namespace
 
 void validate(const Scene& scene) {
@@ -336,6 +348,7 @@ void validate(const Scene& scene) {
   for (std::size_t i = 0; i < scene.cuts.size(); ++i) validate_cut(r, scene, scene.cuts[i], item("cuts", i));
   validate_solve(r, scene.solve);
   validate_averaged_nodal(r, scene);
+  validate_p_multigrid(r, scene);
   // VCI's forces are not the gradient of an energy: undamped central
   // differences on the tissue-sag slab grew without bound (inf at 10 s).
   if (scene.discretization.method == Method::nodal && scene.discretization.meshless.vci == VciOrder::linear &&

@@ -5,6 +5,7 @@
 #include "core/check.h"
 #include "core/gmres.h"
 #include "solvers/free_system_rows.h"
+#include "solvers/linear_prolongation.h"
 
 namespace kerf {
 
@@ -29,6 +30,19 @@ std::vector<Vector> rigid_body_modes(const MechanicalSystem& mechanics, const Fr
   for (int axis = dim == 3 ? 0 : 2; axis < 3; ++axis)
     add([&](const Vec3& x) { return Vec3(Vec3::Unit(axis).cross(x)); });
   return modes;
+}
+
+/// The linear functions of the body's quadratic cells on the free dofs (p-multigrid's coarse space).
+SparseMatrix coarse_space(const MechanicalSystem& mechanics, const FreeDofs& free) {
+  const MeshedBody* meshed = capability<MeshedBody>(mechanics.body());
+  KERF_CHECK(meshed && meshed->mesh().order == 2 && mechanics.dof_count() == mechanics.body().dof_count(),
+             "solve.linear_solver: p_multigrid needs a finite-element body of quadratic cells (tet10 or tri6) "
+             "whose nodes carry every dof");
+  const Mesh& mesh = meshed->mesh();
+  std::vector<Index> split_nodes;  // the coarse level solves them exactly (linear_prolongation.h)
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    if (meshed->fragment_cell(c)) split_nodes.insert(split_nodes.end(), mesh.cell(c).begin(), mesh.cell(c).end());
+  return corner_prolongation(mesh, free, mechanics.dofs_per_node(), split_nodes);
 }
 
 /// Whether every node (and every term's block) has all its dofs free or none.
@@ -75,6 +89,7 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
   solver_ = make_linear_solver(linear, report_);
   if (!solver_->copies_matrix()) free_.prepare_matrix(stiffness_);  // A_ff formed by kerf (else backend_takes)
   solver_->set_near_null_space(rigid_body_modes(mechanics_, free_));
+  if (solver_->needs_prolongation()) solver_->set_prolongation(coarse_space(mechanics_, free_));
   solver_->set_row_share(free_rows(mechanics_.dof_share(), free_, mechanics_.dof_count(), mechanics_.dofs_per_node()));
   symmetric_ = mechanics_.symmetric_tangent();
   KERF_CHECK(symmetric_ || !mechanics_.dof_share().partial,

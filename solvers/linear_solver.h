@@ -73,6 +73,10 @@ class LinearSolver {
   /// Vectors the operator nearly annihilates (rigid-body modes), for solvers
   /// that build coarse spaces from them (algebraic multigrid); before analyze().
   virtual void set_near_null_space(const std::vector<Vector>& modes) {}
+  /// Whether the backend needs a coarse space (set_prolongation) before analyze(): p-multigrid.
+  virtual bool needs_prolongation() const { return false; }
+  /// P (free dofs x coarse dofs): the coarse space of a multigrid backend.
+  virtual void set_prolongation(const SparseMatrix& P) {}
   /// How the MPI ranks share the rows (before analyze()): solvers that run on
   /// one rank ignore it (the command line refuses them under several).
   virtual void set_row_share(const RowShare& share) {}

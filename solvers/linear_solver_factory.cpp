@@ -2,6 +2,7 @@
 #include "solvers/cholmod_solver.h"
 #include "solvers/eigen_solvers.h"
 #include "solvers/linear_solver.h"
+#include "solvers/p_multigrid_solver.h"
 #include "solvers/petsc_solver.h"
 
 namespace kerf {
@@ -17,6 +18,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(const LinearSolverOptions& opti
       return make_eigen_cg_solver(options.relative_tolerance);
     case LinearSolverKind::ldlt:
       return make_eigen_ldlt_solver();
+    case LinearSolverKind::p_multigrid:
+      return make_p_multigrid_solver(options.relative_tolerance);
   }
   throw Error("unknown linear solver");
 }

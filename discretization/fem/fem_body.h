@@ -98,6 +98,7 @@ class FemBody final : public DiscreteBody,
   /// stiffness over its lumped mass).
   double critical_time_step() const override;
   const Mesh& mesh() const override { return mesh_; }
+  bool fragment_cell(Index c) const override { return split_ && !split_->whole(c); }
   /// On a piece, `matrix` is in the pieces' global numbering (FemPiece::global_node).
   void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
 

@@ -1,0 +1,202 @@
+#include "solvers/p_multigrid_solver.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <optional>
+#include <sstream>
+
+#include "solvers/cholmod_solver.h"
+#include "solvers/galerkin_product.h"
+
+namespace kerf {
+namespace {
+
+/// y = A x, rows shared among the threads.
+void multiply(const SparseMatrix& A, const Vector& x, Vector& y) {
+  const Index n = static_cast<Index>(A.rows());
+  const Index* outer = A.outerIndexPtr();
+  const Index* inner = A.innerIndexPtr();
+  const double* values = A.valuePtr();
+  y.resize(n);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    double sum = 0.0;
+    for (Index k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
+    y[i] = sum;
+  }
+}
+
+/// The largest eigenvalue of D^-1 A (D = diag A) from `steps` of Lanczos, run
+/// as Jacobi-preconditioned CG on a fixed pseudo-random right-hand side: the
+/// CG coefficients are the entries of the Lanczos tridiagonal matrix.
+double largest_jacobi_eigenvalue(const SparseMatrix& A, const Vector& inverse_diagonal, int steps) {
+  const Index n = static_cast<Index>(A.rows());
+  Vector r(n), z, p, q;
+  for (Index i = 0; i < n; ++i) r[i] = std::sin(12.9898 * static_cast<double>(i) + 1.0);  // deterministic
+  z = inverse_diagonal.cwiseProduct(r);
+  p = z;
+  double rz = r.dot(z), alpha_before = 0.0, beta_before = 0.0;
+  std::vector<double> diagonal, off;
+  for (int k = 0; k < steps; ++k) {
+    multiply(A, p, q);
+    const double pq = p.dot(q);
+    if (!(pq > 0.0)) break;
+    const double alpha = rz / pq;
+    diagonal.push_back(1.0 / alpha + (k > 0 ? beta_before / alpha_before : 0.0));
+    r -= alpha * q;
+    z = inverse_diagonal.cwiseProduct(r);
+    const double rz_next = r.dot(z);
+    const double beta = rz_next / rz;
+    if (k + 1 < steps) off.push_back(std::sqrt(beta) / alpha);
+    p = z + beta * p;
+    rz = rz_next, alpha_before = alpha, beta_before = beta;
+    if (!(rz > 0.0)) break;
+  }
+  const int m = static_cast<int>(diagonal.size());
+  if (m == 0) return 0.0;
+  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
+  for (int k = 0; k < m; ++k) T(k, k) = diagonal[k];
+  for (int k = 0; k + 1 < m; ++k) T(k, k + 1) = T(k + 1, k) = off[k];
+  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(T, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
+}
+
+class PMultigridSolver final : public LinearSolver {
+ public:
+  explicit PMultigridSolver(double tolerance) : tolerance_(tolerance) {}
+  std::string name() const override { return "p_multigrid"; }
+  bool needs_prolongation() const override { return true; }
+  void set_prolongation(const SparseMatrix& P) override { prolongation_ = P; }
+  int last_iterations() const override { return iterations_; }
+
+  LinearSolverStatus analyze(const SparseMatrix& pattern) override {
+    if (prolongation_.rows() != pattern.rows() || prolongation_.cols() == 0)
+      return LinearSolverStatus::failure("p_multigrid: no coarse space for the " + std::to_string(pattern.rows()) +
+                                         " rows (the body has no quadratic cells)");
+    galerkin_.emplace(prolongation_, pattern);
+    coarse_solver_ = make_cholmod_solver();
+    return prefixed(coarse_solver_->analyze(galerkin_->coarse()));
+  }
+
+  LinearSolverStatus factorize(const SparseMatrix& A) override {
+    if (!galerkin_) return LinearSolverStatus::failure("p_multigrid: factorize() before analyze()");
+    matrix_ = A;
+    inverse_diagonal_ = matrix_.diagonal();
+    for (Index i = 0; i < inverse_diagonal_.size(); ++i) {
+      if (!(inverse_diagonal_[i] > 0.0)) {
+        LinearSolverStatus status = LinearSolverStatus::failure(
+            "p_multigrid: the matrix is not positive definite (diagonal entry " + std::to_string(i) + " is " +
+            std::to_string(inverse_diagonal_[i]) + ")");
+        status.failed_row = i;
+        return status;
+      }
+      inverse_diagonal_[i] = 1.0 / inverse_diagonal_[i];
+    }
+    // PETSc's Chebyshev targets for multigrid smoothing: [0.1, 1.1] of the estimate.
+    const double largest = 1.1 * largest_jacobi_eigenvalue(matrix_, inverse_diagonal_, 12);
+    lower_ = 0.1 * largest, upper_ = largest;
+    return prefixed(coarse_solver_->factorize(galerkin_->compute(matrix_)));
+  }
+
+  LinearSolverStatus solve(const Vector& b, Vector& x) override;
+
+ private:
+  void smooth(const Vector& b, Vector& x, bool from_zero);
+  void precondition_v_cycle(const Vector& r, Vector& z);
+  LinearSolverStatus prefixed(LinearSolverStatus status) const {
+    if (!status.ok) status.message = "p_multigrid, the coarse (linear) level: " + status.message;
+    status.failed_row.reset();  // a coarse row, not one of the matrix's
+    return status;
+  }
+
+  double tolerance_;
+  SparseMatrix prolongation_;
+  std::optional<GalerkinProduct> galerkin_;
+  std::unique_ptr<LinearSolver> coarse_solver_;
+  SparseMatrix matrix_;
+  Vector inverse_diagonal_;
+  double lower_ = 0.0, upper_ = 0.0;
+  // Chebyshev steps a smoothing. The 2.5 mm tet10 cantilever (62 343 dofs):
+  // 34, 21, 17 CG iterations for degree 1, 2, 3; the solve 0.34, 0.32, 0.40 s.
+  static constexpr int degree_ = 2;
+  int iterations_ = 0;
+  Vector residual_, direction_, product_, coarse_rhs_, coarse_x_;
+};
+
+/// Chebyshev smoothing of A x = b on D^-1 A's interval [lower_, upper_],
+/// degree_ steps; from x = 0 the first residual is b itself.
+void PMultigridSolver::smooth(const Vector& b, Vector& x, bool from_zero) {
+  const double theta = 0.5 * (upper_ + lower_), delta = 0.5 * (upper_ - lower_), sigma = theta / delta;
+  if (from_zero) {
+    residual_ = b;
+  } else {
+    multiply(matrix_, x, product_);
+    residual_ = b - product_;
+  }
+  direction_ = inverse_diagonal_.cwiseProduct(residual_) / theta;
+  double rho = 1.0 / sigma;
+  for (int k = 1;; ++k) {
+    x += direction_;
+    if (k == degree_) break;
+    multiply(matrix_, direction_, product_);
+    residual_ -= product_;
+    const double rho_next = 1.0 / (2.0 * sigma - rho);
+    direction_ = rho_next * rho * direction_ + (2.0 * rho_next / delta) * inverse_diagonal_.cwiseProduct(residual_);
+    rho = rho_next;
+  }
+}
+
+/// z = B r, B the symmetric V-cycle: smooth, correct on the coarse level, smooth again.
+void PMultigridSolver::precondition_v_cycle(const Vector& r, Vector& z) {
+  z.setZero(r.size());
+  smooth(r, z, true);
+  multiply(matrix_, z, product_);
+  coarse_rhs_ = prolongation_.transpose() * (r - product_);
+  coarse_solver_->solve(coarse_rhs_, coarse_x_);
+  z += prolongation_ * coarse_x_;
+  smooth(r, z, false);
+}
+
+LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
+  const Index n = static_cast<Index>(b.size());
+  x.setZero(n);
+  iterations_ = 0;
+  const double b_norm = b.norm();
+  if (b_norm == 0.0) return LinearSolverStatus::success();
+  Vector r = b, z, p, q;
+  precondition_v_cycle(r, z);
+  p = z;
+  double rz = r.dot(z), r_norm = b_norm;
+  const int most = 1000;
+  while (iterations_ < most) {
+    multiply(matrix_, p, q);
+    const double pq = p.dot(q);
+    ++iterations_;
+    if (!(pq > 0.0) || !std::isfinite(rz)) {
+      std::ostringstream why;
+      why << "p_multigrid: conjugate gradients met p^T A p = " << pq << " at iteration " << iterations_
+          << ": the matrix (or the preconditioner) is not positive definite";
+      return LinearSolverStatus::failure(why.str());
+    }
+    const double alpha = rz / pq;
+    x += alpha * p;
+    r -= alpha * q;
+    r_norm = r.norm();
+    if (r_norm <= tolerance_ * b_norm) return LinearSolverStatus::success();
+    precondition_v_cycle(r, z);
+    const double rz_next = r.dot(z);
+    p = z + (rz_next / rz) * p;
+    rz = rz_next;
+  }
+  std::ostringstream why;
+  why << "p_multigrid: no convergence after " << most << " iterations (relative residual " << r_norm / b_norm
+      << ", asked " << tolerance_ << ")";
+  return LinearSolverStatus::failure(why.str());
+}
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_p_multigrid_solver(double relative_tolerance) {
+  return std::make_unique<PMultigridSolver>(relative_tolerance);
+}
+
+}  // namespace kerf
