@@ -53,7 +53,9 @@ class LinearSolver {
   virtual std::string name() const = 0;
   /// Symbolic work on the pattern (ordering, preallocation).
   virtual LinearSolverStatus analyze(const SparseMatrix& pattern) = 0;
-  /// Numeric factorization (or preconditioner set-up) of A, same pattern as analyzed.
+  /// Numeric factorization (or preconditioner set-up) of A, same pattern as
+  /// analyzed. A stays as it is until the next factorize(): an iterative
+  /// backend may keep a reference to it instead of a copy (p_multigrid).
   virtual LinearSolverStatus factorize(const SparseMatrix& A) = 0;
   /// x = A^-1 b for the last factorized A.
   virtual LinearSolverStatus solve(const Vector& b, Vector& x) = 0;

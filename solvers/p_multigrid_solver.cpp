@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "solvers/cholmod_solver.h"
+#include "solvers/compact_matrix.h"
 #include "solvers/galerkin_product.h"
 
 namespace kerf {
@@ -29,8 +30,8 @@ void multiply(const SparseMatrix& A, const Vector& x, Vector& y) {
 /// The largest eigenvalue of D^-1 A (D = diag A) from `steps` of Lanczos, run
 /// as Jacobi-preconditioned CG on a fixed pseudo-random right-hand side: the
 /// CG coefficients are the entries of the Lanczos tridiagonal matrix.
-double largest_jacobi_eigenvalue(const SparseMatrix& A, const Vector& inverse_diagonal, int steps) {
-  const Index n = static_cast<Index>(A.rows());
+double largest_jacobi_eigenvalue(const CompactMatrix& A, const Vector& inverse_diagonal, int steps) {
+  const Index n = static_cast<Index>(inverse_diagonal.size());
   Vector r(n), z, p, q;
   for (Index i = 0; i < n; ++i) r[i] = std::sin(12.9898 * static_cast<double>(i) + 1.0);  // deterministic
   z = inverse_diagonal.cwiseProduct(r);
@@ -38,7 +39,7 @@ double largest_jacobi_eigenvalue(const SparseMatrix& A, const Vector& inverse_di
   double rz = r.dot(z), alpha_before = 0.0, beta_before = 0.0;
   std::vector<double> diagonal, off;
   for (int k = 0; k < steps; ++k) {
-    multiply(A, p, q);
+    A.multiply(p, q);
     const double pq = p.dot(q);
     if (!(pq > 0.0)) break;
     const double alpha = rz / pq;
@@ -66,6 +67,7 @@ class PMultigridSolver final : public LinearSolver {
   std::string name() const override { return "p_multigrid"; }
   bool needs_prolongation() const override { return true; }
   void set_prolongation(const SparseMatrix& P) override { prolongation_ = P; }
+  void set_row_share(const RowShare& share) override { block_ = share.block_size; }
   int last_iterations() const override { return iterations_; }
 
   LinearSolverStatus analyze(const SparseMatrix& pattern) override {
@@ -73,14 +75,16 @@ class PMultigridSolver final : public LinearSolver {
       return LinearSolverStatus::failure("p_multigrid: no coarse space for the " + std::to_string(pattern.rows()) +
                                          " rows (the body has no quadratic cells)");
     galerkin_.emplace(prolongation_, pattern);
+    compact_.analyze(pattern, block_);
     coarse_solver_ = make_cholmod_solver();
     return prefixed(coarse_solver_->analyze(galerkin_->coarse()));
   }
 
   LinearSolverStatus factorize(const SparseMatrix& A) override {
     if (!galerkin_) return LinearSolverStatus::failure("p_multigrid: factorize() before analyze()");
-    matrix_ = A;
-    inverse_diagonal_ = matrix_.diagonal();
+    matrix_ = &A;
+    compact_.assign(A);
+    inverse_diagonal_ = A.diagonal();
     for (Index i = 0; i < inverse_diagonal_.size(); ++i) {
       if (!(inverse_diagonal_[i] > 0.0)) {
         LinearSolverStatus status = LinearSolverStatus::failure(
@@ -92,9 +96,9 @@ class PMultigridSolver final : public LinearSolver {
       inverse_diagonal_[i] = 1.0 / inverse_diagonal_[i];
     }
     // PETSc's Chebyshev targets for multigrid smoothing: [0.1, 1.1] of the estimate.
-    const double largest = 1.1 * largest_jacobi_eigenvalue(matrix_, inverse_diagonal_, 12);
+    const double largest = 1.1 * largest_jacobi_eigenvalue(compact_, inverse_diagonal_, 12);
     lower_ = 0.1 * largest, upper_ = largest;
-    return prefixed(coarse_solver_->factorize(galerkin_->compute(matrix_)));
+    return prefixed(coarse_solver_->factorize(galerkin_->compute(A)));
   }
 
   LinearSolverStatus solve(const Vector& b, Vector& x) override;
@@ -112,7 +116,9 @@ class PMultigridSolver final : public LinearSolver {
   SparseMatrix prolongation_;
   std::optional<GalerkinProduct> galerkin_;
   std::unique_ptr<LinearSolver> coarse_solver_;
-  SparseMatrix matrix_;
+  const SparseMatrix* matrix_ = nullptr;  // the last factorized A (linear_solver.h: kept until the next)
+  CompactMatrix compact_;  // A in single precision and node blocks, for the smoother
+  int block_ = 1;          // dofs a node, when the free dofs are whole nodes
   Vector inverse_diagonal_;
   double lower_ = 0.0, upper_ = 0.0;
   // Chebyshev steps a smoothing. The 2.5 mm tet10 cantilever (62 343 dofs):
@@ -129,7 +135,7 @@ void PMultigridSolver::smooth(const Vector& b, Vector& x, bool from_zero) {
   if (from_zero) {
     residual_ = b;
   } else {
-    multiply(matrix_, x, product_);
+    compact_.multiply(x, product_);
     residual_ = b - product_;
   }
   direction_ = inverse_diagonal_.cwiseProduct(residual_) / theta;
@@ -137,7 +143,7 @@ void PMultigridSolver::smooth(const Vector& b, Vector& x, bool from_zero) {
   for (int k = 1;; ++k) {
     x += direction_;
     if (k == degree_) break;
-    multiply(matrix_, direction_, product_);
+    compact_.multiply(direction_, product_);
     residual_ -= product_;
     const double rho_next = 1.0 / (2.0 * sigma - rho);
     direction_ = rho_next * rho * direction_ + (2.0 * rho_next / delta) * inverse_diagonal_.cwiseProduct(residual_);
@@ -149,7 +155,7 @@ void PMultigridSolver::smooth(const Vector& b, Vector& x, bool from_zero) {
 void PMultigridSolver::precondition_v_cycle(const Vector& r, Vector& z) {
   z.setZero(r.size());
   smooth(r, z, true);
-  multiply(matrix_, z, product_);
+  compact_.multiply(z, product_);
   coarse_rhs_ = prolongation_.transpose() * (r - product_);
   coarse_solver_->solve(coarse_rhs_, coarse_x_);
   z += prolongation_ * coarse_x_;
@@ -168,7 +174,7 @@ LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
   double rz = r.dot(z), r_norm = b_norm;
   const int most = 1000;
   while (iterations_ < most) {
-    multiply(matrix_, p, q);
+    multiply(*matrix_, p, q);
     const double pq = p.dot(q);
     ++iterations_;
     if (!(pq > 0.0) || !std::isfinite(rz)) {
