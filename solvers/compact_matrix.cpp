@@ -36,19 +36,20 @@ void CompactMatrix::analyze(const SparseMatrix& A, int block) {
   rows_ = static_cast<Index>(A.rows());
   const Index* outer = A.outerIndexPtr();
   const Index* inner = A.innerIndexPtr();
-  outer_.assign(1, 0);
-  inner_.clear();
-  source_.clear();
-  source_.reserve(static_cast<std::size_t>(A.nonZeros()));
-  for (Index first = 0; first < rows_; first += B) {
-    const Index count = (outer[first + 1] - outer[first]) / B;  // blocks in this block row
-    for (Index k = 0; k < count; ++k) {
-      inner_.push_back(inner[outer[first] + B * k] / B);
+  const Index block_rows = rows_ / B;
+  outer_.assign(static_cast<std::size_t>(block_rows) + 1, 0);
+  for (Index I = 0; I < block_rows; ++I) outer_[I + 1] = outer_[I] + (outer[B * I + 1] - outer[B * I]) / B;
+  inner_.resize(static_cast<std::size_t>(outer_[block_rows]));
+  source_.resize(inner_.size() * B * B);
+#pragma omp parallel for schedule(static)
+  for (Index I = 0; I < block_rows; ++I)
+    for (Index k = 0; k < outer_[I + 1] - outer_[I]; ++k) {
+      const Index block = outer_[I] + k;
+      inner_[block] = inner[outer[B * I] + B * k] / B;
+      Index* to = &source_[static_cast<std::size_t>(block) * B * B];
       for (int r = 0; r < B; ++r)
-        for (int j = 0; j < B; ++j) source_.push_back(outer[first + r] + B * k + j);
+        for (int j = 0; j < B; ++j) to[r * B + j] = outer[B * I + r] + B * k + j;
     }
-    outer_.push_back(static_cast<Index>(inner_.size()));
-  }
   values_.resize(source_.size());
 }
 

@@ -32,21 +32,30 @@ GalerkinProduct::GalerkinProduct(const SparseMatrix& P, const SparseMatrix& A_pa
   P_.makeCompressed();
   Pt_.makeCompressed();
   const Index n = static_cast<Index>(P.cols());
-  std::vector<Index> outer(static_cast<std::size_t>(n) + 1, 0), inner;
-  std::vector<Index> seen(static_cast<std::size_t>(n), -1);
-  for (Index I = 0; I < n; ++I) {
-    const std::size_t begin = inner.size();
-    for_each_reach(Pt_, P_, A_pattern.outerIndexPtr(), A_pattern.innerIndexPtr(), nullptr, I, [&](Index J, double) {
-      if (seen[J] != I) seen[J] = I, inner.push_back(J);
-    });
-    std::sort(inner.begin() + static_cast<std::ptrdiff_t>(begin), inner.end());
-    outer[I + 1] = static_cast<Index>(inner.size());
+  std::vector<std::vector<Index>> columns(static_cast<std::size_t>(n));  // each coarse row's, found in parallel
+#pragma omp parallel
+  {
+    std::vector<Index> seen(static_cast<std::size_t>(n), -1);
+#pragma omp for schedule(dynamic, 64)
+    for (Index I = 0; I < n; ++I) {
+      std::vector<Index>& row = columns[I];
+      for_each_reach(Pt_, P_, A_pattern.outerIndexPtr(), A_pattern.innerIndexPtr(), nullptr, I, [&](Index J, double) {
+        if (seen[J] != I) seen[J] = I, row.push_back(J);
+      });
+      std::sort(row.begin(), row.end());
+    }
   }
   coarse_.resize(n, n);
-  coarse_.resizeNonZeros(static_cast<Index>(inner.size()));
-  std::copy(outer.begin(), outer.end(), coarse_.outerIndexPtr());
-  std::copy(inner.begin(), inner.end(), coarse_.innerIndexPtr());
-  std::fill(coarse_.valuePtr(), coarse_.valuePtr() + inner.size(), 0.0);
+  Index count = 0;
+  for (const std::vector<Index>& row : columns) count += static_cast<Index>(row.size());
+  coarse_.resizeNonZeros(count);
+  Index* outer = coarse_.outerIndexPtr();
+  outer[0] = 0;
+  for (Index I = 0; I < n; ++I) {
+    std::copy(columns[I].begin(), columns[I].end(), coarse_.innerIndexPtr() + outer[I]);
+    outer[I + 1] = outer[I] + static_cast<Index>(columns[I].size());
+  }
+  std::fill(coarse_.valuePtr(), coarse_.valuePtr() + count, 0.0);
 }
 
 const SparseMatrix& GalerkinProduct::compute(const SparseMatrix& A) {
