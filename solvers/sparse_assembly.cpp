@@ -270,31 +270,37 @@ void FreeDofs::add_to_full(const Vector& free, Vector& full) const {
 }
 
 void FreeDofs::prepare_matrix(const SparseMatrix& full) {
+  // The CSR arrays written directly, rows in parallel: the free numbering
+  // keeps the columns' order, so each row's entries are the full row's free ones.
   const Index n = free_count();
-  std::vector<Index> counts(n, 0);
-  for (Index i = 0; i < n; ++i) {
-    Index r = full_of_free_[i];
-    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
-      if (free_of_full_[full.innerIndexPtr()[p]] >= 0) ++counts[i];
-  }
+  const Index* full_outer = full.outerIndexPtr();
+  const Index* full_inner = full.innerIndexPtr();
   restricted_ = SparseMatrix(n, n);
-  restricted_.reserve(counts);
-  source_position_.clear();
+  Index* outer = restricted_.outerIndexPtr();
+  outer[0] = 0;
+#pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    Index r = full_of_free_[i];
-    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p) {
-      Index j = free_of_full_[full.innerIndexPtr()[p]];
+    const Index r = full_of_free_[i];
+    Index count = 0;
+    for (Index p = full_outer[r]; p < full_outer[r + 1]; ++p) count += free_of_full_[full_inner[p]] >= 0;
+    outer[i + 1] = count;
+  }
+  for (Index i = 0; i < n; ++i) outer[i + 1] += outer[i];
+  restricted_.resizeNonZeros(outer[n]);
+  source_position_.resize(static_cast<std::size_t>(outer[n]));
+  Index* inner = restricted_.innerIndexPtr();
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    const Index r = full_of_free_[i];
+    Index k = outer[i];
+    for (Index p = full_outer[r]; p < full_outer[r + 1]; ++p) {
+      const Index j = free_of_full_[full_inner[p]];
       if (j < 0) continue;
-      restricted_.insert(i, j) = 0.0;
+      inner[k] = j;
+      source_position_[k++] = p;
     }
   }
-  restricted_.makeCompressed();
-  // Columns stay sorted (free numbering preserves order), so positions line up row by row.
-  for (Index i = 0; i < n; ++i) {
-    Index r = full_of_free_[i];
-    for (Index p = full.outerIndexPtr()[r]; p < full.outerIndexPtr()[r + 1]; ++p)
-      if (free_of_full_[full.innerIndexPtr()[p]] >= 0) source_position_.push_back(p);
-  }
+  std::fill(restricted_.valuePtr(), restricted_.valuePtr() + outer[n], 0.0);
   restricted_diagonal_.clear();
 }
 
