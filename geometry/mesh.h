@@ -61,6 +61,10 @@ void for_each_barycentric_piece(const Mesh& mesh, Index c, const BarycentricPiec
 /// centroid[, cell centroid]), each integrated in closed form.
 std::vector<Vec3> dual_cell_second_moments(const Mesh& mesh);
 
+/// Each node's neighbours (the other nodes of its cells), ascending, in CSR
+/// form: node i's are adjacent[start[i], start[i + 1]).
+void node_adjacency(const Mesh& mesh, std::vector<Index>& start, std::vector<Index>& adjacent);
+
 /// The straight-sided linear mesh on the corners of each cell: mid-edge nodes
 /// and nodes of no cell dropped, the others kept in their original order.
 Mesh corner_mesh(const Mesh& mesh);

@@ -5,35 +5,12 @@
 #include <queue>
 
 namespace kerf {
-namespace {
-
-/// Node adjacency (nodes sharing a cell) in CSR form.
-void node_graph(const Mesh& mesh, std::vector<Index>& start, std::vector<Index>& adjacent) {
-  const Index n = mesh.node_count();
-  std::vector<std::vector<Index>> lists(n);
-  for (Index c = 0; c < mesh.cell_count(); ++c) {
-    auto nodes = mesh.cell(c);
-    for (Index a : nodes)
-      for (Index b : nodes)
-        if (a != b) lists[a].push_back(b);
-  }
-  start.assign(n + 1, 0);
-  adjacent.clear();
-  for (Index i = 0; i < n; ++i) {
-    std::sort(lists[i].begin(), lists[i].end());
-    lists[i].erase(std::unique(lists[i].begin(), lists[i].end()), lists[i].end());
-    adjacent.insert(adjacent.end(), lists[i].begin(), lists[i].end());
-    start[i + 1] = static_cast<Index>(adjacent.size());
-  }
-}
-
-}  // namespace
 
 void order_for_locality(Mesh& mesh) {
   const Index n = mesh.node_count();
   if (n == 0) return;
   std::vector<Index> start, adjacent;
-  node_graph(mesh, start, adjacent);
+  node_adjacency(mesh, start, adjacent);
   auto degree = [&](Index i) { return start[i + 1] - start[i]; };
   // Cuthill-McKee from a node of least degree, breadth first, neighbours by degree;
   // every connected piece in turn.

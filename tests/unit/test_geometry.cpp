@@ -66,6 +66,24 @@ TEST(Geometry, BoundaryFacetsCoverTheSurfaceWithOutwardNormals) {
   EXPECT_NEAR(area, 6.0, 1e-12);
 }
 
+// Each node's neighbours are the other nodes of its cells, ascending, each
+// once: against sets built cell by cell on a gmsh box (tet10: mid-edge nodes too).
+TEST(Geometry, NodeAdjacencyListsEachNeighbourOnceInOrder) {
+  const Mesh mesh = testing::unit_box_mesh(3, 2, 0.5);
+  std::vector<std::set<Index>> expected(static_cast<std::size_t>(mesh.node_count()));
+  for (Index c = 0; c < mesh.cell_count(); ++c)
+    for (Index a : mesh.cell(c))
+      for (Index b : mesh.cell(c))
+        if (a != b) expected[a].insert(b);
+  std::vector<Index> start, adjacent;
+  node_adjacency(mesh, start, adjacent);
+  ASSERT_EQ(start.size(), static_cast<std::size_t>(mesh.node_count()) + 1);
+  for (Index n = 0; n < mesh.node_count(); ++n)
+    EXPECT_EQ(std::vector<Index>(adjacent.begin() + start[n], adjacent.begin() + start[n + 1]),
+              std::vector<Index>(expected[n].begin(), expected[n].end()))
+        << "node " << n;
+}
+
 TEST(Geometry, CellsOfOneColourShareNoNode) {
   Mesh mesh = testing::unit_box_mesh(3, 2, 0.25);
   CellColoring coloring = color_cells(mesh);
