@@ -74,7 +74,8 @@ ImplicitSystem::ImplicitSystem(MechanicalSystem& mechanics, const SolveOptions& 
     : mechanics_(mechanics), report_(report), free_(mechanics.dof_count(), mechanics.dirichlet(0.0)) {
   ScopedTimer timer(report_.phases, Phase::setup);
   KERF_CHECK(free_.free_count() > 0, "every degree of freedom is prescribed: nothing to solve");
-  stiffness_ = build_pattern(mechanics_);
+  SparseMatrix pattern = build_pattern(mechanics_);
+  stiffness_.swap(pattern);  // Eigen's SparseMatrix has no move assignment: `=` would copy it
   LinearSolverOptions linear;
   linear.kind = options.linear_solver;
   linear.petsc_options = options.petsc;
