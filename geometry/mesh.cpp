@@ -141,7 +141,8 @@ std::array<Vec3, 2> bounding_box(const Mesh& mesh) {
 
 void node_adjacency(const Mesh& mesh, std::vector<Index>& start, std::vector<Index>& adjacent) {
   // Each node's cells (CSR), then the nodes they hold, each taken once by a
-  // marker: no list a node (the 2.5 mm tet10 cantilever: 50 -> about 10 ms).
+  // marker, not a list a node sorted with its duplicates (the 2.5 mm tet10
+  // cantilever's locality order: 95 -> 35 ms CPU).
   const Index nodes = mesh.node_count(), cells = mesh.cell_count();
   std::vector<Index> first(static_cast<std::size_t>(nodes) + 1, 0), incident(mesh.cells.size());
   for (Index n : mesh.cells) ++first[n + 1];

@@ -607,7 +607,7 @@ void FemBody::add_gravity(const Vec3& gravity) {
   // cell (the load is whole on each), so this is set-up no rank divides.
   // N_a det J has degree order + dim (order - 1) (curved cells' J is of degree
   // order - 1): the symmetric rule of that degree is exact, as the mass rule
-  // is, with 14 points a tet10 against 64 (the 2.5 mm cantilever: 85 -> 20 ms).
+  // is, with 14 points a tet10 against 64 (the 2.5 mm cantilever: 86 -> 24 ms CPU).
   const int dim = mesh_.dimension, order = mesh_.order;
   const QuadratureRule rule = symmetric_simplex_rule(dim, order + dim * (order - 1));
   const std::size_t nq = rule.points.size(), npc = static_cast<std::size_t>(npc_);
