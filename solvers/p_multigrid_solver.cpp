@@ -66,7 +66,14 @@ class PMultigridSolver final : public LinearSolver {
   explicit PMultigridSolver(double tolerance) : tolerance_(tolerance) {}
   std::string name() const override { return "p_multigrid"; }
   bool needs_prolongation() const override { return true; }
-  void set_prolongation(const SparseMatrix& P) override { prolongation_ = P; }
+  void set_prolongation(const SparseMatrix& P) override {
+    prolongation_ = P;
+    // Each coarse dof's own fine row (the corner's, weight 1): where a failed coarse pivot is.
+    fine_row_of_coarse_.assign(static_cast<std::size_t>(P.cols()), -1);
+    for (Index row = 0; row < P.rows(); ++row)
+      for (SparseMatrix::InnerIterator it(P, row); it; ++it)
+        if (it.value() == 1.0) fine_row_of_coarse_[it.index()] = row;
+  }
   void set_row_share(const RowShare& share) override { block_ = share.block_size; }
   int last_iterations() const override { return iterations_; }
 
@@ -97,6 +104,9 @@ class PMultigridSolver final : public LinearSolver {
     }
     // PETSc's Chebyshev targets for multigrid smoothing: [0.1, 1.1] of the estimate.
     const double largest = 1.1 * largest_jacobi_eigenvalue(compact_, inverse_diagonal_, 12);
+    if (!(largest > 0.0) || !std::isfinite(largest))
+      return LinearSolverStatus::failure("p_multigrid: the smoother's eigenvalue estimate is " +
+                                         std::to_string(largest) + ": the matrix is not positive definite");
     lower_ = 0.1 * largest, upper_ = largest;
     return prefixed(coarse_solver_->factorize(galerkin_->compute(A)));
   }
@@ -105,15 +115,22 @@ class PMultigridSolver final : public LinearSolver {
 
  private:
   void smooth(const Vector& b, Vector& x, bool from_zero);
-  void precondition_v_cycle(const Vector& r, Vector& z);
+  LinearSolverStatus precondition_v_cycle(const Vector& r, Vector& z);
+  /// A coarse level's status in the matrix's terms: its failed row is the coarse dof's own fine row.
   LinearSolverStatus prefixed(LinearSolverStatus status) const {
     if (!status.ok) status.message = "p_multigrid, the coarse (linear) level: " + status.message;
-    status.failed_row.reset();  // a coarse row, not one of the matrix's
+    if (status.failed_row && *status.failed_row >= 0 &&
+        *status.failed_row < static_cast<Index>(fine_row_of_coarse_.size()) &&
+        fine_row_of_coarse_[*status.failed_row] >= 0)
+      status.failed_row = fine_row_of_coarse_[*status.failed_row];
+    else
+      status.failed_row.reset();
     return status;
   }
 
   double tolerance_;
   SparseMatrix prolongation_;
+  std::vector<Index> fine_row_of_coarse_;
   std::optional<GalerkinProduct> galerkin_;
   std::unique_ptr<LinearSolver> coarse_solver_;
   const SparseMatrix* matrix_ = nullptr;  // the last factorized A (linear_solver.h: kept until the next)
@@ -152,14 +169,16 @@ void PMultigridSolver::smooth(const Vector& b, Vector& x, bool from_zero) {
 }
 
 /// z = B r, B the symmetric V-cycle: smooth, correct on the coarse level, smooth again.
-void PMultigridSolver::precondition_v_cycle(const Vector& r, Vector& z) {
+LinearSolverStatus PMultigridSolver::precondition_v_cycle(const Vector& r, Vector& z) {
   z.setZero(r.size());
   smooth(r, z, true);
   compact_.multiply(z, product_);
   coarse_rhs_ = prolongation_.transpose() * (r - product_);
-  coarse_solver_->solve(coarse_rhs_, coarse_x_);
+  LinearSolverStatus status = prefixed(coarse_solver_->solve(coarse_rhs_, coarse_x_));
+  if (!status.ok) return status;
   z += prolongation_ * coarse_x_;
   smooth(r, z, false);
+  return status;
 }
 
 LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
@@ -169,7 +188,8 @@ LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
   const double b_norm = b.norm();
   if (b_norm == 0.0) return LinearSolverStatus::success();
   Vector r = b, z, p, q;
-  precondition_v_cycle(r, z);
+  LinearSolverStatus status = precondition_v_cycle(r, z);
+  if (!status.ok) return status;
   p = z;
   double rz = r.dot(z), r_norm = b_norm;
   const int most = 1000;
@@ -188,7 +208,8 @@ LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
     r -= alpha * q;
     r_norm = r.norm();
     if (r_norm <= tolerance_ * b_norm) return LinearSolverStatus::success();
-    precondition_v_cycle(r, z);
+    status = precondition_v_cycle(r, z);
+    if (!status.ok) return status;
     const double rz_next = r.dot(z);
     p = z + (rz_next / rz) * p;
     rz = rz_next;

@@ -127,5 +127,18 @@ TEST(PMultigridScenes, TheOrganCutIntoSplitCellsSolvesAsUnderCholmod) {
   EXPECT_LE(iterations_per_solve(multigrid), 40);
 }
 
+// A body held by nothing: the coarse level's factorization fails first, and
+// the run stops saying so, naming the fine dof of the failed coarse pivot.
+TEST(PMultigridScenes, AFreeBodyStopsNamingWhereItIsSingular) {
+  const std::string message = testing::error_message([] {
+    testing::run_scene_file("scenes/cantilever.yaml",
+                            {"discretization.fem.size=0.01", "solve.linear_solver=p_multigrid", "boundary=[]",
+                             "output.vtk=false"},
+                            "PMultigridFreeBody");
+  });
+  testing::expect_mentions(message, {"p_multigrid, the coarse (linear) level", "not positive definite", "node ",
+                                     "The body is singular there"});
+}
+
 }  // namespace
 }  // namespace kerf
