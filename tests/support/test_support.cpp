@@ -90,6 +90,14 @@ nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector
   return run_scene(scene, options).summary;
 }
 
+nlohmann::ordered_json run_scene_file_ok(const std::string& scene_file, std::vector<std::string> overrides,
+                                         const std::string& test_name) {
+  overrides.push_back("output.vtk=false");
+  nlohmann::ordered_json s = run_scene_file(scene_file, std::move(overrides), test_name);
+  EXPECT_EQ(s["status"], "ok") << test_name << ": " << s.value("error", "");
+  return s;
+}
+
 nlohmann::ordered_json run_scene_text(const std::string& yaml, const std::vector<std::string>& overrides) {
   const Scene scene = scene_from_text(yaml, overrides);
   RunOptions options;

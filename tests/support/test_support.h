@@ -46,6 +46,11 @@ void expect_mentions(const std::string& message, std::initializer_list<std::stri
 nlohmann::ordered_json run_scene_file(const std::string& scene_file, std::vector<std::string> overrides,
                                       const std::string& test_name);
 
+/// The same without ParaView output, expecting the run to end well (the
+/// failure names the test and the run's error); returns summary.json.
+nlohmann::ordered_json run_scene_file_ok(const std::string& scene_file, std::vector<std::string> overrides,
+                                         const std::string& test_name);
+
 /// Runs a scene given as YAML text quietly, its output where `overrides` put
 /// it (output.dir); returns summary.json, also when the run stopped with an
 /// error (then "status" is "error" and "error" the message).
