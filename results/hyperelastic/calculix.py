@@ -55,6 +55,16 @@ def write_set(out, name, ids):
         out.write(", ".join(str(n) for n in ids[k:k + 12]) + "\n")
 
 
+def write_mesh(out, nodes, cells):
+    """The nodes (set Nall) and the C3D10 elements (set Eall) of an .inp file."""
+    out.write("*NODE, NSET=Nall\n")
+    for n, x in sorted(nodes.items()):
+        out.write(f"{n}, {x[0]!r}, {x[1]!r}, {x[2]!r}\n")
+    out.write("*ELEMENT, TYPE=C3D10, ELSET=Eall\n")
+    for e, cell in enumerate(cells, 1):
+        out.write(f"{e}, " + ", ".join(str(cell[k]) for k in GMSH_TO_C3D10) + "\n")
+
+
 def run(msh, work, young, poisson, density, sets, boundary, loads, prints):
     """sets: {name: predicate on (x, y, z)}; boundary: lines of *BOUNDARY;
     loads: lines after the step's *STATIC (e.g. *DLOAD); prints: {set: 'U' or
@@ -65,12 +75,7 @@ def run(msh, work, young, poisson, density, sets, boundary, loads, prints):
     os.makedirs(work, exist_ok=True)
     inp = os.path.join(work, "model.inp")
     with open(inp, "w") as out:
-        out.write("*NODE, NSET=Nall\n")
-        for n, x in sorted(nodes.items()):
-            out.write(f"{n}, {x[0]!r}, {x[1]!r}, {x[2]!r}\n")
-        out.write("*ELEMENT, TYPE=C3D10, ELSET=Eall\n")
-        for e, cell in enumerate(cells, 1):
-            out.write(f"{e}, " + ", ".join(str(cell[k]) for k in GMSH_TO_C3D10) + "\n")
+        write_mesh(out, nodes, cells)
         for name, where in sets.items():
             ids = node_set(nodes, where)
             if not ids:

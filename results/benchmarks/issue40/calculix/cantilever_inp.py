@@ -6,16 +6,11 @@ Usage: cantilever_inp.py MESH.msh OUT.inp"""
 import os, sys
 
 sys.path.insert(0, os.path.join(os.path.dirname(__file__), "../../../hyperelastic"))
-from calculix import GMSH_TO_C3D10, node_set, read_msh22, write_set  # noqa: E402
+from calculix import node_set, read_msh22, write_mesh, write_set  # noqa: E402
 
 nodes, cells = read_msh22(sys.argv[1])
 with open(sys.argv[2], "w") as out:
-    out.write("*NODE, NSET=Nall\n")
-    for n, x in sorted(nodes.items()):
-        out.write(f"{n}, {x[0]!r}, {x[1]!r}, {x[2]!r}\n")
-    out.write("*ELEMENT, TYPE=C3D10, ELSET=Eall\n")
-    for e, cell in enumerate(cells, 1):
-        out.write(f"{e}, " + ", ".join(str(cell[k]) for k in GMSH_TO_C3D10) + "\n")
+    write_mesh(out, nodes, cells)
     write_set(out, "FIXED", node_set(nodes, lambda x: abs(x[0]) < 1e-9))
     tip = min(nodes, key=lambda n: sum((a - b) ** 2 for a, b in zip(nodes[n], (0.1, 0.01, 0.01))))
     write_set(out, "TIP", [tip])
