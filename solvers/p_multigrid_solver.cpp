@@ -1,6 +1,5 @@
 #include "solvers/p_multigrid_solver.h"
 
-#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <optional>
 #include <sstream>
@@ -8,58 +7,10 @@
 #include "solvers/cholmod_solver.h"
 #include "solvers/compact_matrix.h"
 #include "solvers/galerkin_product.h"
+#include "solvers/largest_eigenvalue.h"
 
 namespace kerf {
 namespace {
-
-/// y = A x, rows shared among the threads.
-void multiply(const SparseMatrix& A, const Vector& x, Vector& y) {
-  const Index n = static_cast<Index>(A.rows());
-  const Index* outer = A.outerIndexPtr();
-  const Index* inner = A.innerIndexPtr();
-  const double* values = A.valuePtr();
-  y.resize(n);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    double sum = 0.0;
-    for (Index k = outer[i]; k < outer[i + 1]; ++k) sum += values[k] * x[inner[k]];
-    y[i] = sum;
-  }
-}
-
-/// The largest eigenvalue of D^-1 A (D = diag A) from `steps` of Lanczos, run
-/// as Jacobi-preconditioned CG on a fixed pseudo-random right-hand side: the
-/// CG coefficients are the entries of the Lanczos tridiagonal matrix.
-double largest_jacobi_eigenvalue(const CompactMatrix& A, const Vector& inverse_diagonal, int steps) {
-  const Index n = static_cast<Index>(inverse_diagonal.size());
-  Vector r(n), z, p, q;
-  for (Index i = 0; i < n; ++i) r[i] = std::sin(12.9898 * static_cast<double>(i) + 1.0);  // deterministic
-  z = inverse_diagonal.cwiseProduct(r);
-  p = z;
-  double rz = r.dot(z), alpha_before = 0.0, beta_before = 0.0;
-  std::vector<double> diagonal, off;
-  for (int k = 0; k < steps; ++k) {
-    A.multiply(p, q);
-    const double pq = p.dot(q);
-    if (!(pq > 0.0)) break;
-    const double alpha = rz / pq;
-    diagonal.push_back(1.0 / alpha + (k > 0 ? beta_before / alpha_before : 0.0));
-    r -= alpha * q;
-    z = inverse_diagonal.cwiseProduct(r);
-    const double rz_next = r.dot(z);
-    const double beta = rz_next / rz;
-    if (k + 1 < steps) off.push_back(std::sqrt(beta) / alpha);
-    p = z + beta * p;
-    rz = rz_next, alpha_before = alpha, beta_before = beta;
-    if (!(rz > 0.0)) break;
-  }
-  const int m = static_cast<int>(diagonal.size());
-  if (m == 0) return 0.0;
-  Eigen::MatrixXd T = Eigen::MatrixXd::Zero(m, m);
-  for (int k = 0; k < m; ++k) T(k, k) = diagonal[k];
-  for (int k = 0; k + 1 < m; ++k) T(k, k + 1) = T(k + 1, k) = off[k];
-  return Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(T, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff();
-}
 
 class PMultigridSolver final : public LinearSolver {
  public:
@@ -103,7 +54,7 @@ class PMultigridSolver final : public LinearSolver {
       inverse_diagonal_[i] = 1.0 / inverse_diagonal_[i];
     }
     // PETSc's Chebyshev targets for multigrid smoothing: [0.1, 1.1] of the estimate.
-    const double largest = 1.1 * largest_jacobi_eigenvalue(compact_, inverse_diagonal_, 12);
+    const double largest = 1.1 * largest_jacobi_eigenvalue();
     if (!(largest > 0.0) || !std::isfinite(largest))
       return LinearSolverStatus::failure("p_multigrid: the smoother's eigenvalue estimate is " +
                                          std::to_string(largest) + ": the matrix is not positive definite");
@@ -114,6 +65,17 @@ class PMultigridSolver final : public LinearSolver {
   LinearSolverStatus solve(const Vector& b, Vector& x) override;
 
  private:
+  /// The largest eigenvalue of D^-1 A (D = diag A; A's compact copy) by 12
+  /// steps of Lanczos (solvers/largest_eigenvalue.h, with D as the mass).
+  double largest_jacobi_eigenvalue() const {
+    const Vector diagonal = inverse_diagonal_.cwiseInverse();
+    const FreeDofs every(static_cast<Index>(diagonal.size()), {});
+    LanczosOptions options;
+    options.max_iterations = 12;
+    options.start_entry = [](Index i) { return std::sin(12.9898 * static_cast<double>(i) + 1.0); };
+    const auto times = [this](const Vector& x, Vector& y) { compact_.multiply(x, y); };
+    return largest_eigenvalue(times, diagonal, every, options).ritz_value;
+  }
   void smooth(const Vector& b, Vector& x, bool from_zero);
   LinearSolverStatus precondition_v_cycle(const Vector& r, Vector& z);
   /// A coarse level's status in the matrix's terms: its failed row is the coarse dof's own fine row.
@@ -173,10 +135,11 @@ LinearSolverStatus PMultigridSolver::precondition_v_cycle(const Vector& r, Vecto
   z.setZero(r.size());
   smooth(r, z, true);
   compact_.multiply(z, product_);
-  coarse_rhs_ = prolongation_.transpose() * (r - product_);
+  residual_ = r - product_;
+  coarse_rhs_.noalias() = prolongation_.transpose() * residual_;
   LinearSolverStatus status = prefixed(coarse_solver_->solve(coarse_rhs_, coarse_x_));
   if (!status.ok) return status;
-  z += prolongation_ * coarse_x_;
+  z.noalias() += prolongation_ * coarse_x_;
   smooth(r, z, false);
   return status;
 }
@@ -194,7 +157,7 @@ LinearSolverStatus PMultigridSolver::solve(const Vector& b, Vector& x) {
   double rz = r.dot(z), r_norm = b_norm;
   const int most = 1000;
   while (iterations_ < most) {
-    multiply(*matrix_, p, q);
+    q.noalias() = *matrix_ * p;
     const double pq = p.dot(q);
     ++iterations_;
     if (!(pq > 0.0) || !std::isfinite(rz)) {
