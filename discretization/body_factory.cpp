@@ -37,7 +37,7 @@ Mesh scene_mesh(const Scene& scene, int order, double size, std::vector<CutPiece
 
 /// FEM's mesh, made by this process: its cells are of the element the scene
 /// asks, never silently another. A linear mesh file asked for quadratic
-/// cells is raised by gmsh (mid-edge nodes on its straight edges); a
+/// cells is raised (mid-edge nodes on its straight edges, as gmsh raises it); a
 /// quadratic one asked for linear cells keeps its corners (edges
 /// straightened). Either is said in the notes.
 Mesh fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report) {
@@ -52,7 +52,7 @@ Mesh fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report)
                             scene.mesh_file + ", which holds " + (file_order == 1 ? "linear" : "quadratic") +
                             " cells: ";
   if (order == 2 && file_order == 1)
-    report.notes.push_back(asked + "gmsh raised them to second order (mid-edge nodes on their straight edges)");
+    report.notes.push_back(asked + "raised them to second order (mid-edge nodes on their straight edges)");
   if (order == 1 && mesh.order == 2) {
     mesh = corner_mesh(mesh);
     report.notes.push_back(asked + "their corner nodes were taken as linear cells (curved edges straightened)");

@@ -9,8 +9,4 @@ const GmshModule& gmsh_module() {
 
 Mesh mesh_box(const BoxMeshRequest& request) { return gmsh_module().mesh_box(request); }
 
-Mesh read_msh(const std::string& path, int dimension, MshOrder order, int* file_order) {
-  return gmsh_module().read_msh(path, dimension, order, file_order);
-}
-
 }  // namespace kerf

@@ -21,6 +21,7 @@ cases = [  # the scene, what the run asks, and the modules it must have loaded
     ("nodal_lattice_paraview", hanging, ["output.vtk=true"], {"vtk"}),
     ("nodal_traction", pulled, ["discretization.method=nodal", "output.vtk=false"], {"gmsh"}),  # its boundary's cells
     ("fem", pulled, ["output.vtk=false"], {"gmsh"}),
+    ("fem_mesh_file", f"{scenes}/cube_from_mesh.yaml", ["output.vtk=false"], set()),  # MSH 4.1, read by kerf itself
     ("fem_petsc", pulled, ["output.vtk=false", "solve.linear_solver=petsc"], {"gmsh", "petsc"}),
 ]
 for name, scene, keys, expected in cases:
