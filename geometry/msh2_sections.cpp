@@ -72,7 +72,8 @@ void order_by_number(MshContent& content) {
     into.node_tags.insert(into.node_tags.end(), block.node_tags.begin(), block.node_tags.end());
   }
   content.blocks.clear();
-  for (auto& [key, block] : merged) {
+  for (auto& entry : merged) {
+    const MshElementBlock& block = entry.second;  // (a structured binding cannot be captured under clang's OpenMP)
     const std::size_t count = block.element_tags.size();
     const std::size_t nodes = block.node_tags.size() / std::max<std::size_t>(count, 1);
     std::vector<std::size_t> order(count);

@@ -24,13 +24,14 @@ seed() {  # seed TARGET FILES...: copies the seeds into the target's corpus
   cp -n "$@" "$corpus"/ 2>/dev/null || true
 }
 seed fuzz_scene "$root"/scenes/*.yaml "$root"/tests/malformed/*.yaml
-seed fuzz_msh "$root"/scenes/meshes/*.msh "$root"/tests/malformed/meshes/*.msh
+seed fuzz_msh "$root"/scenes/meshes/*.msh "$root"/tests/malformed/meshes/*.msh "$root"/tests/fuzz/msh_seeds/*.msh
 
 failed=0
 for target in fuzz_scene fuzz_msh; do
   mkdir -p "$build/artifacts/$target"
-  # fuzz_scene: a scene key dictionary; 10 s a unit, 4 GB. fuzz_msh: each
-  # unit forks gmsh's reader (read_msh), whose allocations libFuzzer's own
+  # fuzz_scene: a scene key dictionary; 10 s a unit, 4 GB. fuzz_msh: kerf's
+  # own reader runs in this process; a unit it leaves to gmsh forks gmsh's
+  # reader (read_msh), whose allocations libFuzzer's own
   # limits would report as crashes of this process (the child is a copy of
   # it): ASan caps one allocation at 4 GB instead (std::bad_alloc in the
   # child, reported by kerf), and a unit may take read_msh's 60 s deadline.

@@ -1,6 +1,7 @@
 // libFuzzer target: mesh files, through read_msh as a scene's domain.mesh is
-// read (gmsh in a child process, so that gmsh's own crashes on malformed
-// files end in a message), then the checks kerf makes on what comes back.
+// read (kerf's own reader in this process for MSH 4.1 and 2.2; gmsh's in a
+// child process for the files it leaves, so that gmsh's own crashes on
+// malformed files end in a message), then the checks kerf makes on what comes back.
 // Every bad file must end in kerf::Error; a mesh that comes back must be
 // whole (every cell's nodes exist). Any other exception, a crash or a
 // sanitizer report in this process is a finding.
@@ -17,7 +18,7 @@
 #include "core/check.h"
 #include "geometry/msh_reader.h"
 
-// read_msh forks gmsh's reader; the child is a copy of this fuzzer, and its
+// read_msh may fork gmsh's reader; the child is a copy of this fuzzer, and its
 // death (gmsh crashing or running out of memory, which kerf reports) would
 // run libFuzzer's death callback there and be written up as the fuzzer's crash.
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
