@@ -104,6 +104,8 @@ bool read_elements_4(MshCursor& in, const Encoding& e, const Entities& entities,
     const BlockHeader h = read_block_header(in, e, entities, e.binary ? 16 : 4, "an element type");
     const auto size = gmsh_element_size(h.kind);
     if (!size) return false;
+    const std::size_t tag_bytes = e.binary ? static_cast<std::size_t>(e.size_bytes) : 2;  // "1 " at least
+    in.check_count(h.count, tag_bytes * static_cast<std::size_t>(1 + size->nodes), "a block's number of elements");
     if (h.dimension == 3 && h.count > 0) content.has_volume_elements = true;
     const bool kept = h.dimension == request.dimension && (h.kind == request.types[0] || h.kind == request.types[1]);
     MshElementBlock* block = nullptr;
