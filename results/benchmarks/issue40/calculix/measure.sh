@@ -7,7 +7,10 @@
 # 5 times a CG iteration (the CG product, two Chebyshev steps before and after
 # the coarse correction, its residual) plus 12 times for the Lanczos estimate.
 # Usage (from the source tree, built): results/benchmarks/issue40/calculix/measure.sh > runs.txt
+# A second argument, another build's kerf, adds its msh p_multigrid run to
+# each round ("before_msh_p_multigrid").
 K=${1:-build/cli/kerf}
+BEFORE=${2:-}
 here=$(dirname "$0")
 work=$(mktemp -d)
 cat > "$work/box.geo" <<GEO
@@ -27,13 +30,19 @@ declare -A runs=(
   [kerf_box_p_multigrid]="scenes/cantilever.yaml --set discretization.fem.size=0.0025 --set solve.linear_solver=p_multigrid"
   [kerf_msh_cholmod]="$work/cantilever_msh.yaml"
   [kerf_msh_p_multigrid]="$work/cantilever_msh.yaml --set solve.linear_solver=p_multigrid"
+  [before_msh_p_multigrid]="$work/cantilever_msh.yaml --set solve.linear_solver=p_multigrid"
 )
 for rep in 1 2 3; do
   (cd "$work" && OMP_NUM_THREADS=2 CCX_NPROC_EQUATION_SOLVER=2 /usr/bin/time -f "%e" -o ccx.time ccx -i model > ccx.log 2>&1)
   tip=$(awk '/displacements/{getline; getline; print $4}' "$work/model.dat")
   printf "%-22s wall %6.2f s  tip %.5f mm\n" ccx "$(cat "$work/ccx.time")" "$(/usr/bin/python3 -c "print($tip * 1e3)")"
-  for name in kerf_box_cholmod kerf_box_p_multigrid kerf_msh_cholmod kerf_msh_p_multigrid; do
-    /usr/bin/time -f "%e" -o "$work/time" $K run ${runs[$name]} --set output.vtk=false --out "$work/$name" > /dev/null 2>&1
+  names="kerf_box_cholmod kerf_box_p_multigrid kerf_msh_cholmod kerf_msh_p_multigrid"
+  [ -n "$BEFORE" ] && names+=" before_msh_p_multigrid"
+  for name in $names; do
+    binary=$K
+    [ $name = before_msh_p_multigrid ] && binary=$BEFORE
+    /usr/bin/time -f "%e" -o "$work/time" $binary run ${runs[$name]} --set output.vtk=false --out "$work/$name" \
+      > /dev/null 2>&1
     /usr/bin/python3 - "$work/$name/summary.json" "$(cat "$work/time")" "$name" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1])); p = d["timing"]["phases"]
