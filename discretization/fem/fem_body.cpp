@@ -393,9 +393,33 @@ void FemBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
 
 namespace {
 
+/// True when every node's dpn rows hold the same columns, in whole blocks of
+/// a node's dpn consecutive dofs (build_pattern's matrices): then a block's
+/// first entry in its node's first row places the whole block.
+bool whole_node_blocks(const CsrView& m, int dpn) {
+  if (m.rows % dpn != 0) return false;
+  const Index nodes = m.rows / dpn;
+  Index broken = 0;
+#pragma omp parallel for schedule(static) reduction(+ : broken)
+  for (Index node = 0; node < nodes; ++node) {
+    const Index row = dpn * node, length = m.outer[row + 1] - m.outer[row];
+    bool whole = length % dpn == 0;
+    for (int i = 1; i < dpn && whole; ++i) whole = m.outer[row + i + 1] - m.outer[row + i] == length;
+    for (Index q = 0; q < length && whole; q += dpn) {
+      const Index first = m.inner[m.outer[row] + q];
+      whole = first % dpn == 0;
+      for (int i = 0; i < dpn && whole; ++i)
+        for (int k = 0; k < dpn && whole; ++k) whole = m.inner[m.outer[row + i] + q + k] == first + k;
+    }
+    broken += whole ? 0 : 1;
+  }
+  return broken == 0;
+}
+
 /// Where each of cell `nodes`' node-pair blocks starts in its rows of `m`
-/// (npc^2 offsets into `out`), or false when the pattern lacks one.
-bool cell_block_offsets(std::span<const Index> nodes, int dpn, const CsrView& m, Index* out) {
+/// (npc^2 offsets into `out`), or false when the pattern lacks one. With
+/// `whole_blocks` (whole_node_blocks) a block is checked by its first entry.
+bool cell_block_offsets(std::span<const Index> nodes, int dpn, const CsrView& m, bool whole_blocks, Index* out) {
   const int npc = static_cast<int>(nodes.size());
   for (int a = 0; a < npc; ++a) {
     const Index row = dpn * nodes[a];
@@ -404,6 +428,11 @@ bool cell_block_offsets(std::span<const Index> nodes, int dpn, const CsrView& m,
     const Index* end = m.inner + m.outer[row + 1];
     for (int b = 0; b < npc; ++b) {
       const Index offset = static_cast<Index>(std::lower_bound(begin, end, dpn * nodes[b]) - begin);
+      if (whole_blocks) {
+        if (begin + offset == end || begin[offset] != dpn * nodes[b]) return false;
+        out[a * npc + b] = offset;
+        continue;
+      }
       // The same offset serves the node's other rows: their patterns must agree.
       for (int i = 0; i < dpn; ++i)
         for (int k = 0; k < dpn; ++k) {
@@ -426,6 +455,7 @@ const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
   // each cell fills its own entries, so the cells run in parallel.
   pair_offsets_.resize(static_cast<std::size_t>(cell_end_ - cell_begin_) * npc_ * npc_);
   Index lacking = -1;  // a cell whose blocks the pattern lacks (no exception may leave the loop)
+  const bool whole_blocks = whole_node_blocks(m, mesh_.dimension);
 #pragma omp parallel for schedule(static)
   for (Index c = cell_begin_; c < cell_end_; ++c) {
     std::array<Index, 10> global;  // a piece's cell in the matrix's numbering
@@ -434,7 +464,7 @@ const std::vector<Index>& FemBody::pair_offsets(const CsrView& m) const {
       for (int a = 0; a < npc_; ++a) global[a] = piece_->global_node[nodes[a]];
       nodes = std::span<const Index>(global.data(), npc_);
     }
-    if (!cell_block_offsets(nodes, mesh_.dimension, m,
+    if (!cell_block_offsets(nodes, mesh_.dimension, m, whole_blocks,
                             &pair_offsets_[static_cast<std::size_t>(c - cell_begin_) * npc_ * npc_])) {
 #pragma omp critical(kerf_pair_offsets)
       lacking = c;
@@ -457,9 +487,11 @@ const std::vector<Index>& FemBody::star_offsets(const CsrView& m) const {
   }
   star_offsets_.resize(star_offset_start_.back());
   Index lacking = -1;
+  const bool whole_blocks = whole_node_blocks(m, mesh_.dimension);
 #pragma omp parallel for schedule(static)
   for (Index a = begin; a < end; ++a)
-    if (!cell_block_offsets(bulk_average_->star(a), mesh_.dimension, m, &star_offsets_[star_offset_start_[a - begin]])) {
+    if (!cell_block_offsets(bulk_average_->star(a), mesh_.dimension, m, whole_blocks,
+                            &star_offsets_[star_offset_start_[a - begin]])) {
 #pragma omp critical(kerf_star_offsets)
       lacking = a;
     }
