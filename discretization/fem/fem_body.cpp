@@ -102,13 +102,51 @@ FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::s
   build_constraints(scene);
 }
 
+namespace {
+
+/// The gradients of a cell's `npc` shape functions at one point (`dN`, in
+/// reference coordinates) in physical ones, into `grad`; returns det J (the
+/// caller refuses a non-positive one, leaving `grad` unused).
+template <int Dim>
+double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const double* dN, double* grad) {
+  const int npc = static_cast<int>(nodes.size());
+  Eigen::Matrix<double, Dim, Dim> J = Eigen::Matrix<double, Dim, Dim>::Zero();  // dX/dxi
+  for (int a = 0; a < npc; ++a)
+    for (int i = 0; i < Dim; ++i)
+      for (int k = 0; k < Dim; ++k) J(i, k) += mesh.nodes[nodes[a]][i] * dN[a * Dim + k];
+  const double det = J.determinant();
+  if (!(det > 0.0)) return det;
+  const Eigen::Matrix<double, Dim, Dim> Jinv = J.inverse();
+  for (int a = 0; a < npc; ++a)
+    for (int l = 0; l < Dim; ++l) {
+      double sum = 0.0;
+      for (int k = 0; k < Dim; ++k) sum += dN[a * Dim + k] * Jinv(k, l);
+      grad[a * Dim + l] = sum;
+    }
+  return det;
+}
+
+double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const double* dN, double* grad) {
+  return mesh.dimension == 3 ? physical_gradients<3>(mesh, nodes, dN, grad)
+                             : physical_gradients<2>(mesh, nodes, dN, grad);
+}
+
+[[noreturn]] void refuse_inverted(Index c, std::size_t q, double det) {
+  throw Error(detail::concat("mesh cell ", c, " is inverted or degenerate (det J = ", det, " at quadrature point ", q,
+                             "); check the mesh"));
+}
+
+}  // namespace
+
 void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previous) {
+  if (!split_ && !previous) return integrate_whole_cells(rule);
   const int dim = mesh_.dimension;
   const Index C = kept_cells();
+  const std::size_t per_point = static_cast<std::size_t>(npc_) * dim;
   point_start_.assign(1, 0);
-  grad_.reserve(static_cast<std::size_t>(C) * rule.points.size() * npc_ * dim);
+  grad_.reserve(static_cast<std::size_t>(C) * rule.points.size() * per_point);
   wdet_.reserve(static_cast<std::size_t>(C) * rule.points.size());
-  std::vector<double> dN(npc_ * dim);
+  std::vector<double> dN(per_point);
   for (Index c = 0; c < C; ++c) {
     auto nodes = mesh_.cell(c);
     QuadratureRule own;  // a copy's rule on its fragment; a whole cell uses `rule` itself
@@ -121,23 +159,42 @@ void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previou
     const QuadratureRule& cell = copy ? own : rule;
     for (std::size_t q = 0; q < cell.points.size(); ++q) {
       simplex_shape_gradients(dim, mesh_.order, cell.points[q], dN.data());
-      Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);  // dX/dxi
-      for (int a = 0; a < npc_; ++a)
-        for (int i = 0; i < dim; ++i)
-          for (int k = 0; k < dim; ++k) J(i, k) += mesh_.nodes[nodes[a]][i] * dN[a * dim + k];
-      double det = J.determinant();
-      KERF_CHECK(det > 0.0, "mesh cell ", c, " is inverted or degenerate (det J = ", det,
-                 " at quadrature point ", q, "); check the mesh");
-      Eigen::MatrixXd Jinv = J.inverse();
-      for (int a = 0; a < npc_; ++a)
-        for (int l = 0; l < dim; ++l) {
-          double sum = 0.0;
-          for (int k = 0; k < dim; ++k) sum += dN[a * dim + k] * Jinv(k, l);
-          grad_.push_back(sum);
-        }
+      grad_.resize(grad_.size() + per_point);
+      const double det = physical_gradients(mesh_, nodes, dN.data(), grad_.data() + grad_.size() - per_point);
+      if (!(det > 0.0)) refuse_inverted(c, q, det);
       wdet_.push_back(cell.weights[q] * det);
     }
     point_start_.push_back(static_cast<Index>(wdet_.size()));
+  }
+}
+
+void FemBody::integrate_whole_cells(const QuadratureRule& rule) {
+  const int dim = mesh_.dimension;
+  const Index C = kept_cells();
+  const std::size_t points = rule.points.size(), per_point = static_cast<std::size_t>(npc_) * dim;
+  std::vector<double> dN(points * per_point);  // the same reference gradients in every cell
+  for (std::size_t q = 0; q < points; ++q) simplex_shape_gradients(dim, mesh_.order, rule.points[q], &dN[q * per_point]);
+  point_start_.resize(static_cast<std::size_t>(C) + 1);
+  for (Index c = 0; c <= C; ++c) point_start_[c] = c * static_cast<Index>(points);
+  grad_.resize(static_cast<std::size_t>(C) * points * per_point);
+  wdet_.resize(static_cast<std::size_t>(C) * points);
+  Index inverted = C;  // the first inverted cell, as the serial loop would meet it
+#pragma omp parallel for schedule(static) reduction(min : inverted)
+  for (Index c = 0; c < C; ++c)
+    for (std::size_t q = 0; q < points; ++q) {
+      const std::size_t at = static_cast<std::size_t>(c) * points + q;
+      const double det = physical_gradients(mesh_, mesh_.cell(c), &dN[q * per_point], &grad_[at * per_point]);
+      if (!(det > 0.0)) {
+        inverted = std::min(inverted, c);
+        break;
+      }
+      wdet_[at] = rule.weights[q] * det;
+    }
+  if (inverted == C) return;
+  for (std::size_t q = 0; q < points; ++q) {  // the message's point and determinant
+    std::vector<double> unused(per_point);
+    const double det = physical_gradients(mesh_, mesh_.cell(inverted), &dN[q * per_point], unused.data());
+    if (!(det > 0.0)) refuse_inverted(inverted, q, det);
   }
 }
 

@@ -152,6 +152,9 @@ class FemBody final : public DiscreteBody,
   /// (`rule`, or a copy's rule on its fragment); whole cells that were whole
   /// in `previous` (the same outline) take its figures.
   void integrate_cells(const QuadratureRule& rule, const FemBody* previous);
+  /// integrate_cells where every cell is whole and nothing is taken: the
+  /// cells in parallel, the reference gradients computed once.
+  void integrate_whole_cells(const QuadratureRule& rule);
   /// Appends the figures of the parent's cell if it is whole here; false if it is split.
   bool take_whole_cell(Index parent, std::vector<double>& grad, std::vector<double>& wdet) const;
   /// Each cell's Cauchy stress, the mean over its stiffness points.
