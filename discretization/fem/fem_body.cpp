@@ -131,8 +131,13 @@ double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const 
                              : physical_gradients<2>(mesh, nodes, dN, grad);
 }
 
-[[noreturn]] void refuse_inverted(Index c, std::size_t q, double det) {
-  throw Error(detail::concat("mesh cell ", c, " is inverted or degenerate (det J = ", det, " at quadrature point ", q,
+/// Names the cell by its corners' mean: kerf's cell numbers follow its locality order, not the file's.
+[[noreturn]] void refuse_inverted(const Mesh& mesh, Index c, std::size_t q, double det) {
+  Vec3 centre = Vec3::Zero();
+  const int corners = mesh.dimension + 1;
+  for (int a = 0; a < corners; ++a) centre += mesh.nodes[mesh.cell(c)[a]] / corners;
+  throw Error(detail::concat("mesh cell ", c, " (corners centred at ", centre.x(), ", ", centre.y(), ", ", centre.z(),
+                             " m) is inverted or degenerate (det J = ", det, " at quadrature point ", q,
                              "); check the mesh"));
 }
 
@@ -161,7 +166,7 @@ void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previou
       simplex_shape_gradients(dim, mesh_.order, cell.points[q], dN.data());
       grad_.resize(grad_.size() + per_point);
       const double det = physical_gradients(mesh_, nodes, dN.data(), grad_.data() + grad_.size() - per_point);
-      if (!(det > 0.0)) refuse_inverted(c, q, det);
+      if (!(det > 0.0)) refuse_inverted(mesh_, c, q, det);
       wdet_.push_back(cell.weights[q] * det);
     }
     point_start_.push_back(static_cast<Index>(wdet_.size()));
@@ -194,7 +199,7 @@ void FemBody::integrate_whole_cells(const QuadratureRule& rule) {
   for (std::size_t q = 0; q < points; ++q) {  // the message's point and determinant
     std::vector<double> unused(per_point);
     const double det = physical_gradients(mesh_, mesh_.cell(inverted), &dN[q * per_point], unused.data());
-    if (!(det > 0.0)) refuse_inverted(inverted, q, det);
+    if (!(det > 0.0)) refuse_inverted(mesh_, inverted, q, det);
   }
 }
 

@@ -1,7 +1,10 @@
 // The FEM body on real gmsh meshes: patch test, rigid-body modes in the null
 // space, tangent by finite differences for every material, mass and load totals.
 #include <gtest/gtest.h>
+#include <omp.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <limits>
 
 #include <Eigen/Geometry>
@@ -135,6 +138,46 @@ TEST_P(FemElementTest, TangentMatchesFiniteDifferencesForEveryMaterial) {
     double numeric_power = (body.strain_energy(u + h * du) - body.strain_energy(u - h * du)) / (2 * h);
     EXPECT_NEAR(f_alone.dot(du), numeric_power, 1e-6 * std::abs(numeric_power)) << to_string(model);
   }
+}
+
+// A curved tet10 whose mid-edge node lies past its edge's end has a negative
+// det J inside: the body refuses it naming the first such cell (by the mean
+// of its corners: the body's cell numbers follow its own order) and the
+// point, the same on one thread as on two (the cells run in parallel).
+TEST(FemBody, ACellInvertedInsideIsRefusedNamingTheFirstOne) {
+  Mesh mesh = testing::unit_box_mesh(3, 2, 0.5);
+  const Index c = mesh.cell_count() / 2;
+  const auto nodes = mesh.cell(c);
+  const Vec3 from = mesh.nodes[nodes[0]], to = mesh.nodes[nodes[1]];
+  const Index moved = nodes[4];  // the middle of edge (0, 1), now three edge lengths along it
+  mesh.nodes[moved] = from + 3.0 * (to - from);
+  auto refusal = [&](int threads) {
+    omp_set_num_threads(threads);
+    try {
+      FemBody body(plain_scene(3), mesh);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  const std::string two = refusal(2), one = refusal(1);
+  omp_set_num_threads(2);
+  EXPECT_NE(two.find(") is inverted or degenerate (det J = -"), std::string::npos) << two;
+  EXPECT_NE(two.find("at quadrature point"), std::string::npos) << two;
+  EXPECT_EQ(two, one);
+  // The centre named is that of a cell holding the moved node.
+  Vec3 named;
+  ASSERT_EQ(std::sscanf(two.c_str() + two.find("centred at ") + 11, "%lf, %lf, %lf", &named.x(), &named.y(),
+                        &named.z()), 3) << two;
+  double nearest = std::numeric_limits<double>::infinity();
+  for (Index k = 0; k < mesh.cell_count(); ++k) {
+    const auto cell = mesh.cell(k);
+    if (std::find(cell.begin(), cell.end(), moved) == cell.end()) continue;
+    Vec3 centre = Vec3::Zero();
+    for (int a = 0; a < 4; ++a) centre += mesh.nodes[cell[a]] / 4.0;
+    nearest = std::min(nearest, (centre - named).norm());
+  }
+  EXPECT_LT(nearest, 1e-5) << two;
 }
 
 TEST_P(FemElementTest, DirectAssemblyWritesWhatTheSinkWrites) {
