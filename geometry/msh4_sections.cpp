@@ -80,7 +80,8 @@ void read_nodes_4(MshCursor& in, const Encoding& e, const Entities& entities, Ms
   for (std::uint64_t b = 0; b < blocks; ++b) {
     const std::size_t at = in.next_item(e.binary);
     const BlockHeader h = read_block_header(in, e, entities, e.binary ? 32 : 8, "a node block's parametric flag");
-    if (h.kind != 0 && h.kind != 1) in.fail_value(at, "a node block's parametric flag (0 or 1)", std::to_string(h.kind));
+    if (h.kind != 0 && h.kind != 1)
+      in.fail_value(at, "a node block's parametric flag (0 or 1)", std::to_string(h.kind));
     const int parameters = h.kind == 1 ? h.dimension : 0;
     for (std::uint64_t i = 0; i < h.count; ++i) content.node_tags.push_back(read_tag(in, e, "a node tag"));
     for (std::uint64_t i = 0; i < h.count; ++i) {

@@ -79,7 +79,7 @@ bool read_section(MshCursor& in, std::string_view name, int major, const msh::En
     in.skip_section(name);
     return true;
   }
-  in.expect_line("$End" + std::string(name));
+  in.expect_line(std::string("$End").append(name));
   return true;
 }
 
@@ -101,7 +101,8 @@ std::optional<MshContent> read_msh_content(const std::string& path, std::string_
     const std::string_view opening = in.line("a section");
     if (opening.front() != '$')
       in.fail_value(static_cast<std::size_t>(opening.data() - bytes.data()),
-                    "a section's opening line ('$Nodes', '$Elements', ...)", "'" + std::string(opening.substr(0, 40)) + "'");
+                    "a section's opening line ('$Nodes', '$Elements', ...)",
+                    quoted(opening.substr(0, 40)));
     const std::string name(opening.substr(1));
     if (!read_section(in, name, major, *encoding, entities, request, content)) return std::nullopt;
     has_nodes |= name == "Nodes";

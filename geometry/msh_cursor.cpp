@@ -17,14 +17,21 @@ std::string shown(std::string_view bytes, std::size_t position) {
   std::string text;
   for (std::size_t i = position; i < bytes.size() && text.size() < 40 && !is_space(bytes[i]); ++i)
     text += (bytes[i] >= 32 && bytes[i] < 127) ? bytes[i] : '?';
-  return "'" + text + "'";
+  return quoted(text);
 }
 
 }  // namespace
 
+std::string quoted(std::string_view text) {
+  std::string q(1, '\'');
+  q.append(text).push_back('\'');
+  return q;
+}
+
 std::size_t MshCursor::line_number(std::size_t position) const {
   const std::size_t end = std::min(position, bytes_.size());
-  return 1 + static_cast<std::size_t>(std::count(bytes_.begin(), bytes_.begin() + static_cast<std::ptrdiff_t>(end), '\n'));
+  const auto newlines = std::count(bytes_.begin(), bytes_.begin() + static_cast<std::ptrdiff_t>(end), '\n');
+  return 1 + static_cast<std::size_t>(newlines);
 }
 
 void MshCursor::fail_at(std::size_t position, const std::string& expected) const {
@@ -92,11 +99,11 @@ void MshCursor::end_of_line(const char* what) {
 
 void MshCursor::expect_line(std::string_view text) {
   const std::size_t start = (skip_space(), position_);
-  if (at_end() || line("") != text) fail_at(start, "'" + std::string(text) + "'");
+  if (at_end() || line("") != text) fail_at(start, quoted(text));
 }
 
 void MshCursor::skip_section(std::string_view name) {
-  const std::string end = "$End" + std::string(name);
+  const std::string end = std::string("$End").append(name);
   for (std::size_t at = bytes_.find(end, position_); at != std::string_view::npos; at = bytes_.find(end, at + 1)) {
     const bool starts_line = at == 0 || bytes_[at - 1] == '\n';
     const std::size_t after = at + end.size();
@@ -105,7 +112,7 @@ void MshCursor::skip_section(std::string_view name) {
       return;
     }
   }
-  fail("'" + end + "' to close $" + std::string(name));
+  fail(quoted(end).append(" to close $").append(name));
 }
 
 std::uint64_t MshCursor::binary_size(int size_bytes, const char* what) {
@@ -123,7 +130,8 @@ void MshCursor::binary_block(void* out, std::size_t count, std::size_t bytes_eac
 void MshCursor::check_count(std::uint64_t count, std::size_t bytes_each, const char* what) const {
   if (bytes_each != 0 && count > remaining() / bytes_each)
     throw Error(path_ + ":" + std::to_string(line_number(position_)) + ": " + what + " " + std::to_string(count) +
-                " is more than the rest of the file (" + std::to_string(remaining()) + " bytes) can hold: is it cut short?");
+                " is more than the rest of the file (" + std::to_string(remaining()) +
+                " bytes) can hold: is it cut short?");
 }
 
 }  // namespace kerf

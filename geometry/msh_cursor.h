@@ -11,6 +11,10 @@
 
 namespace kerf {
 
+/// `text` between single quotes. (Built by appending: GCC 12 warns falsely
+/// of an overlapping memcpy (-Wrestrict) on "literal" + std::string.)
+std::string quoted(std::string_view text);
+
 class MshCursor {
  public:
   MshCursor(std::string path, std::string_view bytes) : path_(std::move(path)), bytes_(bytes) {}

@@ -178,7 +178,8 @@ void FemBody::integrate_whole_cells(const QuadratureRule& rule) {
   const Index C = kept_cells();
   const std::size_t points = rule.points.size(), per_point = static_cast<std::size_t>(npc_) * dim;
   std::vector<double> dN(points * per_point);  // the same reference gradients in every cell
-  for (std::size_t q = 0; q < points; ++q) simplex_shape_gradients(dim, mesh_.order, rule.points[q], &dN[q * per_point]);
+  for (std::size_t q = 0; q < points; ++q)
+    simplex_shape_gradients(dim, mesh_.order, rule.points[q], &dN[q * per_point]);
   point_start_.resize(static_cast<std::size_t>(C) + 1);
   for (Index c = 0; c <= C; ++c) point_start_[c] = c * static_cast<Index>(points);
   grad_.resize(static_cast<std::size_t>(C) * points * per_point);

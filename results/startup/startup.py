@@ -47,8 +47,8 @@ def scene_on_mesh_file(scene, geo, options, name):
 
 plate_file = scene_on_mesh_file(plate, "SetFactory(\"OpenCASCADE\");\nRectangle(1) = {0, 0, 0, 0.1, 0.05};\n",
                                 ["-2", "-order", "2", "-clmax", "0.0045"], "plate")
-organ_file = scene_on_mesh_file(f"{here}/../../scenes/organ_sag.yaml",
-                                open(f"{here}/../../scenes/meshes/organ.geo").read(), ["-3", "-clmax", "0.003"], "organ")
+organ_geo = open(f"{here}/../../scenes/meshes/organ.geo").read()
+organ_file = scene_on_mesh_file(f"{here}/../../scenes/organ_sag.yaml", organ_geo, ["-3", "-clmax", "0.003"], "organ")
 nodal = ["--set", "discretization.method=nodal", "--set", "discretization.meshless.spacing=0.0022"]
 fem = ["--set", "discretization.fem.size=0.0045"]
 no_vtk = ["--set", "output.vtk=false"]
