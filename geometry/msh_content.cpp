@@ -89,8 +89,8 @@ std::optional<MshContent> read_msh_content(const std::string& path, std::string_
                                            const MshCellRequest& request) {
   MshCursor in(path, bytes);
   if (in.at_end() || in.line("'$MeshFormat'") != "$MeshFormat")
-    throw Error(path + ":1: not a gmsh mesh: expected the first line to be '$MeshFormat', found '" +
-                std::string(bytes.substr(0, std::min<std::size_t>(bytes.find('\n'), 40))) + "'");
+    throw Error(path + ":1: not a gmsh mesh: expected the first line to be '$MeshFormat', found " +
+                quoted(bytes.substr(0, std::min<std::size_t>(bytes.find('\n'), 40))));
   int major = 0;
   const std::optional<msh::Encoding> encoding = read_format(in, major);
   if (!encoding) return std::nullopt;

@@ -61,7 +61,8 @@ std::optional<Mesh> read_msh_without_gmsh(const std::string& path, int dimension
   const int order_in_file = cell_order_of(path, dimension, content->has_volume_elements, has_linear, has_quadratic);
   if (file_order) *file_order = order_in_file;
 
-  // gmsh lists the cells entity by entity, in ascending tags, each in the file's order.
+  // gmsh lists the cells entity by entity, in ascending tags, each in the file's order (MSH 2's come sorted by
+  // element number within an entity: msh2_sections.cpp).
   std::stable_sort(content->blocks.begin(), content->blocks.end(),
                    [](const MshElementBlock& a, const MshElementBlock& b) { return a.entity_tag < b.entity_tag; });
   const NodePositions position(path, content->node_tags);
