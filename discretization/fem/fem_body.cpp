@@ -70,50 +70,30 @@ FemBody::FemBody(const Scene& scene, Mesh mesh, RankShare share, std::span<const
 FemBody::FemBody(const Scene& scene, Mesh mesh, FemPiece piece)
     : FemBody(Ordered{}, scene, std::move(mesh), RankShare{}, {}, nullptr, std::move(piece)) {}
 
-FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
-                 const FemBody* previous, std::optional<FemPiece> piece)
-    : piece_(std::move(piece)),
-      front_(front_refinement(scene, mesh, split_along)),
-      original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
-      split_(split_along.empty() ? std::nullopt
-                                 : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
-      split_pieces_(split_along.begin(), split_along.end()),
-      mesh_(split_ ? std::move(split_->mesh) : std::move(original_)),
-      facets_(previous && !front_ ? previous->facets_ : boundary_facets(outline())),
-      on_boundary_(previous && !front_ ? previous->on_boundary_ : boundary_node_flags(outline(), facets_)),
-      locator_(previous && !front_ ? previous->locator_ : CellLocator(outline())),
-      law_(scene.material),
-      density_(scene.material.density) {
-  const int dim = mesh_.dimension;
-  if (split_) {
-    copies_start_.assign(original_.cell_count() + 1, 0);
-    for (Index p : split_->parent) ++copies_start_[p + 1];
-    for (Index p = 0; p < original_.cell_count(); ++p) copies_start_[p + 1] += copies_start_[p];
-  }
-  share_cells(share);
-  auto box = bounding_box(mesh_);
-  domain_size_ = piece_ ? piece_->domain_size : (box[1] - box[0]).norm();
-  npc_ = mesh_.nodes_per_cell();
-  mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
-  const QuadratureRule rule = simplex_quadrature(dim, element_descriptor(dim, mesh_.order).stiffness_degree);
-  integrate_cells(rule, previous && !front_ ? previous : nullptr);
-  if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
-  build_loads(scene);
-  build_constraints(scene);
-}
-
 namespace {
 
 /// The gradients of a cell's `npc` shape functions at one point (`dN`, in
 /// reference coordinates) in physical ones, into `grad`; returns det J (the
 /// caller refuses a non-positive one, leaving `grad` unused).
 template <int Dim>
-double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const double* dN, double* grad) {
-  const int npc = static_cast<int>(nodes.size());
+Eigen::Matrix<double, Dim, Dim> reference_jacobian(const Mesh& mesh, std::span<const Index> nodes, const double* dN) {
   Eigen::Matrix<double, Dim, Dim> J = Eigen::Matrix<double, Dim, Dim>::Zero();  // dX/dxi
-  for (int a = 0; a < npc; ++a)
+  for (std::size_t a = 0; a < nodes.size(); ++a)
     for (int i = 0; i < Dim; ++i)
       for (int k = 0; k < Dim; ++k) J(i, k) += mesh.nodes[nodes[a]][i] * dN[a * Dim + k];
+  return J;
+}
+
+/// det J of a cell at one point (`dN`, the reference gradients there).
+double jacobian_determinant(const Mesh& mesh, std::span<const Index> nodes, const double* dN) {
+  return mesh.dimension == 3 ? reference_jacobian<3>(mesh, nodes, dN).determinant()
+                             : reference_jacobian<2>(mesh, nodes, dN).determinant();
+}
+
+template <int Dim>
+double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const double* dN, double* grad) {
+  const int npc = static_cast<int>(nodes.size());
+  const Eigen::Matrix<double, Dim, Dim> J = reference_jacobian<Dim>(mesh, nodes, dN);
   const double det = J.determinant();
   if (!(det > 0.0)) return det;
   const Eigen::Matrix<double, Dim, Dim> Jinv = J.inverse();
@@ -141,7 +121,51 @@ double physical_gradients(const Mesh& mesh, std::span<const Index> nodes, const 
                              "); check the mesh"));
 }
 
+/// The shape values and reference gradients at each of `rule`'s points, point after point.
+void rule_shapes(int dim, int order, int npc, const QuadratureRule& rule, std::vector<double>& N,
+                 std::vector<double>& dN) {
+  N.resize(rule.points.size() * npc);
+  dN.resize(rule.points.size() * npc * dim);
+  for (std::size_t q = 0; q < rule.points.size(); ++q) {
+    simplex_shape_values(dim, order, rule.points[q], &N[q * npc]);
+    simplex_shape_gradients(dim, order, rule.points[q], &dN[q * npc * dim]);
+  }
+}
+
 }  // namespace
+
+FemBody::FemBody(Ordered, const Scene& scene, Mesh mesh, RankShare share, std::span<const CutPiece> split_along,
+                 const FemBody* previous, std::optional<FemPiece> piece)
+    : piece_(std::move(piece)),
+      front_(front_refinement(scene, mesh, split_along)),
+      original_(front_ ? std::move(front_->mesh) : std::move(mesh)),
+      split_(split_along.empty() ? std::nullopt
+                                 : std::optional<CellSplit>(split_cells(original_, split_along, split_options(scene)))),
+      split_pieces_(split_along.begin(), split_along.end()),
+      mesh_(split_ ? std::move(split_->mesh) : std::move(original_)),
+      facets_(previous && !front_ ? previous->facets_ : boundary_facets(outline())),
+      on_boundary_(previous && !front_ ? previous->on_boundary_ : boundary_node_flags(outline(), facets_)),
+      locator_(previous && !front_ ? previous->locator_ : CellLocator(outline())),
+      law_(scene.material),
+      density_(scene.material.density) {
+  const int dim = mesh_.dimension;
+  if (split_) {
+    copies_start_.assign(original_.cell_count() + 1, 0);
+    for (Index p : split_->parent) ++copies_start_[p + 1];
+    for (Index p = 0; p < original_.cell_count(); ++p) copies_start_[p + 1] += copies_start_[p];
+  }
+  share_cells(share);
+  auto box = bounding_box(mesh_);
+  domain_size_ = piece_ ? piece_->domain_size : (box[1] - box[0]).norm();
+  npc_ = mesh_.nodes_per_cell();
+  mass_rule_ = simplex_quadrature(dim, 2 * mesh_.order);
+  rule_shapes(dim, mesh_.order, npc_, mass_rule_, mass_N_, mass_dN_);
+  const QuadratureRule rule = simplex_quadrature(dim, element_descriptor(dim, mesh_.order).stiffness_degree);
+  integrate_cells(rule, previous && !front_ ? previous : nullptr);
+  if (scene.discretization.fem.volumetric == FemVolumetric::averaged_nodal) average_bulk_at_nodes(scene);
+  build_loads(scene);
+  build_constraints(scene);
+}
 
 void FemBody::integrate_cells(const QuadratureRule& rule, const FemBody* previous) {
   if (!split_ && !previous) return integrate_whole_cells(rule);
@@ -665,22 +689,22 @@ void FemBody::visit_couplings(const CouplingVisitor& visit) const {
 
 Eigen::MatrixXd FemBody::element_scalar_mass(Index c, bool whole) const {
   const int dim = mesh_.dimension;
-  QuadratureRule own;  // a copy's mass rule on its fragment; a whole cell uses mass_rule_ itself
+  QuadratureRule own;  // a copy's mass rule on its fragment; a whole cell uses mass_rule_ and its shapes
+  std::vector<double> own_N, own_dN;
   const bool copy = !whole && split_ && !split_->whole(c);
-  if (copy) own = cell_rule(c, mass_rule_);
+  if (copy) {
+    own = cell_rule(c, mass_rule_);
+    rule_shapes(dim, mesh_.order, npc_, own, own_N, own_dN);
+  }
   const QuadratureRule& rule = copy ? own : mass_rule_;
+  const double* N = copy ? own_N.data() : mass_N_.data();
+  const double* dN = copy ? own_dN.data() : mass_dN_.data();
   auto nodes = mesh_.cell(c);
   Eigen::MatrixXd M = Eigen::MatrixXd::Zero(npc_, npc_);
-  std::vector<double> N(npc_), dN(npc_ * dim);
   for (std::size_t q = 0; q < rule.points.size(); ++q) {
-    simplex_shape_values(dim, mesh_.order, rule.points[q], N.data());
-    simplex_shape_gradients(dim, mesh_.order, rule.points[q], dN.data());
-    Eigen::MatrixXd J = Eigen::MatrixXd::Zero(dim, dim);
-    for (int a = 0; a < npc_; ++a)
-      for (int i = 0; i < dim; ++i)
-        for (int k = 0; k < dim; ++k) J(i, k) += mesh_.nodes[nodes[a]][i] * dN[a * dim + k];
-    Eigen::Map<Eigen::VectorXd> n(N.data(), npc_);
-    M += density_ * rule.weights[q] * J.determinant() * n * n.transpose();
+    const double det = jacobian_determinant(mesh_, nodes, dN + q * npc_ * dim);
+    const Eigen::Map<const Eigen::VectorXd> n(N + q * npc_, npc_);
+    M.noalias() += (density_ * rule.weights[q] * det) * n * n.transpose();
   }
   return M;
 }

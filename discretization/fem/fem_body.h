@@ -214,6 +214,7 @@ class FemBody final : public DiscreteBody,
   std::vector<double> grad_;   // points * npc * dim: dN/dX at each point
   std::vector<double> wdet_;   // points: weight * det J (m^3, or m^2 in 2D)
   QuadratureRule mass_rule_;   // exact for N_a N_b
+  std::vector<double> mass_N_, mass_dN_;  // its shape values and reference gradients, point after point
   Vector load_;                // dead loads: gravity, traction, pressure (N)
   std::vector<DirichletDof> dirichlet_;
 };
