@@ -7,16 +7,20 @@
 
 namespace kerf::testing {
 
+void write_current_model(const std::string& path, double version, bool binary) {
+  gmsh::option::setNumber("Mesh.MshFileVersion", version);
+  gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
+  gmsh::write(path);
+  gmsh::option::setNumber("Mesh.Binary", 0);
+  gmsh::clear();
+}
+
 void write_msh_as(const std::string& from, const std::string& to, double version, bool binary) {
   SingleThreadScope serial;
   gmsh_module().ensure_initialized();  // one gmsh in the process: the module's, set as kerf sets it
   gmsh::clear();
   gmsh::open(from);
-  gmsh::option::setNumber("Mesh.MshFileVersion", version);
-  gmsh::option::setNumber("Mesh.Binary", binary ? 1 : 0);
-  gmsh::write(to);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  gmsh::clear();
+  write_current_model(to, version, binary);
 }
 
 void write_plate_with_hole(const std::string& path, double size, int order) {
@@ -34,10 +38,7 @@ void write_plate_with_hole(const std::string& path, double size, int order) {
   gmsh::option::setNumber("Mesh.MeshSizeMax", size);
   gmsh::model::mesh::generate(2);
   if (order == 2) gmsh::model::mesh::setOrder(2);
-  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  gmsh::write(path);
-  gmsh::clear();
+  write_current_model(path, 4.1, false);
 }
 
 void write_two_boxes(const std::string& path) {
@@ -54,10 +55,7 @@ void write_two_boxes(const std::string& path) {
   gmsh::option::setNumber("Mesh.MeshSizeMin", 0.3);
   gmsh::option::setNumber("Mesh.MeshSizeMax", 0.3);
   gmsh::model::mesh::generate(3);
-  gmsh::option::setNumber("Mesh.MshFileVersion", 2.2);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  gmsh::write(path);
-  gmsh::clear();
+  write_current_model(path, 2.2, false);
 }
 
 }  // namespace kerf::testing

@@ -5,6 +5,10 @@
 
 namespace kerf::testing {
 
+/// gmsh's current model written to `path` as MSH `version`, binary or ASCII,
+/// then cleared (the options set back to text).
+void write_current_model(const std::string& path, double version, bool binary);
+
 /// gmsh reads `from` and writes it to `to` as MSH `version` (4.1, 4.0, 2.2),
 /// binary or ASCII.
 void write_msh_as(const std::string& from, const std::string& to, double version, bool binary);

@@ -5,6 +5,7 @@
 
 #include "core/thread_scope.h"
 #include "geometry/gmsh_module.h"
+#include "support/msh_conversion.h"
 #include "support/test_support.h"
 
 namespace kerf::testing {
@@ -36,10 +37,7 @@ void write_organ_mesh(const std::string& path, double size_left, double size_rig
   gmsh::model::mesh::field::setAsBackgroundMesh(grading);
   gmsh::model::mesh::generate(3);
   if (order == 2) gmsh::model::mesh::setOrder(2);
-  gmsh::option::setNumber("Mesh.MshFileVersion", 4.1);
-  gmsh::option::setNumber("Mesh.Binary", 0);
-  gmsh::write(path);
-  gmsh::clear();
+  write_current_model(path, 4.1, false);
 }
 
 const std::string& graded_organ_file() {
