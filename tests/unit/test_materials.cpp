@@ -172,6 +172,22 @@ TEST(Material, PolarRotationIsTheRotationOfTheSvd) {
   }
 }
 
+// The Newton iteration stops once its step is below 1e-8: R must still be a
+// rotation, and R^T F symmetric, to round-off, from F a rotation to F with
+// large stretches (the step's bound is quadratic: a looser stop shows here).
+TEST(Material, PolarRotationIsARotationToRoundOffAtEveryStrain) {
+  for (double strain : {0.0, 1e-12, 1e-9, 1e-7, 1e-5, 1e-3, 1e-2, 0.1, 0.5})
+    for (int seed = 1; seed <= 10; ++seed) {
+      const Mat3 turn = Eigen::AngleAxisd(0.5 * seed, Vec3(1, seed % 3, 2).normalized()).toRotationMatrix();
+      std::srand(seed);
+      const Mat3 F = turn * (Mat3::Identity() + strain * Mat3::Random());
+      const Mat3 R = polar_rotation(F);
+      EXPECT_LT((R.transpose() * R - Mat3::Identity()).norm(), 2e-15) << strain << ", seed " << seed;
+      const Mat3 S = R.transpose() * F;
+      EXPECT_LT((S - S.transpose()).norm(), 2e-15 * F.norm()) << strain << ", seed " << seed;
+    }
+}
+
 // The corotational tangent is written in closed form from R and S; here it is
 // checked against the SVD's directional derivative of R (written out below, as
 // the textbooks do: dR = U W V^T, W_ij = (M_ij - M_ji) / (s_i + s_j), M = U^T dF V)
