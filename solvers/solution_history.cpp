@@ -3,11 +3,31 @@
 #include <Eigen/Eigenvalues>
 
 namespace kerf {
+namespace {
+
+/// out = A V for V of `Cols` columns (row-major, row length `stride`), row by
+/// row in parallel: the row's sums stay in registers (Eigen's product of a
+/// sparse matrix and a row-major block sums into a run of dynamic length).
+template <int Cols>
+void times_columns(const SparseMatrix& A, const double* V, Index stride, double* out) {
+  const Index* outer = A.outerIndexPtr();
+  const Index* inner = A.innerIndexPtr();
+  const double* values = A.valuePtr();
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < A.rows(); ++i) {
+    Eigen::Matrix<double, 1, Cols> sum = Eigen::Matrix<double, 1, Cols>::Zero();
+    for (Index p = outer[i]; p < outer[i + 1]; ++p)
+      sum.noalias() += values[p] * Eigen::Map<const Eigen::Matrix<double, 1, Cols>>(V + inner[p] * stride);
+    Eigen::Map<Eigen::Matrix<double, 1, Cols>>(out + i * stride) = sum;
+  }
+}
+
+}  // namespace
 
 void SolutionHistory::remember(const Vector& x) {
   if (capacity_ <= 0) return;
   if (solutions_.rows() != x.size()) {
-    solutions_.resize(x.size(), capacity_);
+    solutions_.setZero(x.size(), capacity_);
     count_ = next_ = 0;
   }
   solutions_.col(next_) = x;
@@ -22,7 +42,10 @@ void SolutionHistory::start(const SparseMatrix& A, const Vector& b, Vector& x0, 
   const auto V = solutions_.leftCols(count_);
   products_.resize(b.size(), capacity_);  // allocates only when the length changes
   auto AV = products_.leftCols(count_);
-  AV.noalias() = A * V;  // one pass over A
+  if (capacity_ == 8 && A.isCompressed())  // the implicit steps' history: all 8 columns (unused ones are zero)
+    times_columns<8>(A, solutions_.data(), capacity_, products_.data());
+  else
+    AV.noalias() = A * V;  // one pass over A
   const Eigen::MatrixXd G = V.transpose() * AV;
   // Scaled to a unit diagonal, so that the cut-off below is relative to each
   // column's own size; columns with v^T A v <= 0 are left out.

@@ -4,6 +4,9 @@
 // the history, and only the last `capacity` solutions of the current length count.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "solvers/solution_history.h"
@@ -59,24 +62,30 @@ TEST(SolutionHistory, StartIsTheSolutionWhenTheSpanHoldsIt) {
   EXPECT_LT(r0.norm(), 1e-10 * s.b.norm());
 }
 
+// Capacity 8 (the implicit steps') takes its own pass over A: partly filled,
+// full, and after older solutions were dropped.
 TEST(SolutionHistory, StartIsTheBestPointOfTheSpanInTheEnergyNorm) {
-  System s;
-  SolutionHistory history(5);
-  std::vector<Vector> kept;
-  for (int i = 0; i < 5; ++i) {
-    kept.push_back(s.exact + 2.0 * Vector::Random(225));
-    history.remember(kept.back());
-  }
-  Vector x0, r0;
-  history.start(s.A, s.b, x0, r0);
-  EXPECT_LT((r0 - (s.b - s.A * x0)).norm(), 1e-12 * s.b.norm());
-  // Galerkin: the residual is orthogonal to every kept solution.
-  for (const Vector& v : kept) EXPECT_LT(std::abs(v.dot(r0)), 1e-10 * v.norm() * s.b.norm());
-  const double error = energy_norm(s.A, x0 - s.exact);
-  EXPECT_LT(error, energy_norm(s.A, s.exact));  // better than zero
-  for (const Vector& v : kept) {  // and than the best multiple of any one of them
-    const double scale = v.dot(s.b) / v.dot(s.A * v);
-    EXPECT_LT(error, energy_norm(s.A, scale * v - s.exact));
+  for (const auto& [capacity, remembered] : {std::pair{5, 5}, {8, 3}, {8, 8}, {8, 11}}) {
+    System s;
+    SolutionHistory history(capacity);
+    std::vector<Vector> kept;
+    for (int i = 0; i < remembered; ++i) {
+      kept.push_back(s.exact + 2.0 * Vector::Random(225));
+      history.remember(kept.back());
+    }
+    kept.erase(kept.begin(), kept.end() - std::min(capacity, remembered));
+    Vector x0, r0;
+    history.start(s.A, s.b, x0, r0);
+    const std::string name = std::to_string(remembered) + " of " + std::to_string(capacity);
+    EXPECT_LT((r0 - (s.b - s.A * x0)).norm(), 1e-12 * s.b.norm()) << name;
+    // Galerkin: the residual is orthogonal to every kept solution.
+    for (const Vector& v : kept) EXPECT_LT(std::abs(v.dot(r0)), 1e-10 * v.norm() * s.b.norm()) << name;
+    const double error = energy_norm(s.A, x0 - s.exact);
+    EXPECT_LT(error, energy_norm(s.A, s.exact)) << name;  // better than zero
+    for (const Vector& v : kept) {  // and than the best multiple of any one of them
+      const double scale = v.dot(s.b) / v.dot(s.A * v);
+      EXPECT_LT(error, energy_norm(s.A, scale * v - s.exact)) << name;
+    }
   }
 }
 
