@@ -3,7 +3,6 @@
 #include <cholmod.h>
 #include <omp.h>
 
-#include <Eigen/Core>
 #include <algorithm>
 #include <numeric>
 
@@ -11,9 +10,6 @@
 
 namespace kerf {
 namespace {
-
-using FloatVector = Eigen::Map<Eigen::VectorXf>;
-using FloatBlock = Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>>;
 
 template <class T>
 std::vector<T> copied(const void* p, std::size_t n) {
@@ -105,20 +101,19 @@ void SinglePrecisionFactor::clear() {
   for (auto& part : parts_) part.clear();
 }
 
-FloatBlock SinglePrecisionFactor::block(Index s, Index& first, Index& width, Index& height) const {
+const float* SinglePrecisionFactor::block(Index s, Index& first, Index& width, Index& height) const {
   first = super_[s];
   width = super_[s + 1] - first;
   height = row_start_[s + 1] - row_start_[s];
-  return FloatBlock(values_.data() + value_start_[s], height, width, Eigen::OuterStride<>(height));
+  return values_.data() + value_start_[s];
 }
 
-void SinglePrecisionFactor::forward(Index s, float* below_rows, float* top_share) const {
+void SinglePrecisionFactor::forward(Index s, float* below, float* top_share) const {
   Index first, width, height;
-  const FloatBlock L = block(s, first, width, height);
-  FloatVector top(y_.data() + first, width);
-  L.topRows(width).triangularView<Eigen::Lower>().solveInPlace(top);
-  FloatVector below(below_rows, height - width);
-  below.noalias() = L.bottomRows(height - width) * top;
+  const float* L = block(s, first, width, height);
+  float* top = y_.data() + first;
+  kernels_->lower_solve(L, height, width, top);
+  kernels_->times(L + width, height, height - width, width, top, below);
   const int* row = rows_.data() + row_start_[s] + width;
   for (Index i = 0; i < height - width; ++i) {
     if (row[i] < top_first_column_ || !top_share)
@@ -128,15 +123,14 @@ void SinglePrecisionFactor::forward(Index s, float* below_rows, float* top_share
   }
 }
 
-void SinglePrecisionFactor::backward(Index s, float* below_rows) const {
+void SinglePrecisionFactor::backward(Index s, float* below) const {
   Index first, width, height;
-  const FloatBlock L = block(s, first, width, height);
-  FloatVector below(below_rows, height - width);
+  const float* L = block(s, first, width, height);
   const int* row = rows_.data() + row_start_[s] + width;
   for (Index i = 0; i < height - width; ++i) below[i] = y_[row[i]];
-  FloatVector top(y_.data() + first, width);
-  top.noalias() -= L.bottomRows(height - width).transpose() * below;
-  L.topRows(width).triangularView<Eigen::Lower>().transpose().solveInPlace(top);
+  float* top = y_.data() + first;
+  kernels_->subtract_transpose_times(L + width, height, height - width, width, below, top);
+  kernels_->lower_transpose_solve(L, height, width, top);
 }
 
 void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
@@ -146,7 +140,7 @@ void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   // L y = P b: the two parts side by side, each adding what it takes from the
   // top chain's rows into its own share; then the shares, then the chain. The
   // same sums in the same order on one thread or two: the same answer.
-  ParallelFailure failure;  // Eigen's products may allocate a temporary: nothing may leave a region
+  ParallelFailure failure;  // Eigen's products (float_kernels.h) may allocate a temporary: nothing may leave a region
 #pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
   for (int p = 0; p < 2; ++p)
     failure.run([&] {

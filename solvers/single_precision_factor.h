@@ -4,13 +4,13 @@
 // bandwidth, so half the bytes take about half the time; the answer is good to
 // about kappa(A) times float's round-off, which is enough to precondition
 // conjugate gradients on a matrix the factor no longer matches exactly anyway.
-#include <Eigen/Core>
 #include <array>
 #include <cstddef>
 #include <utility>
 #include <vector>
 
 #include "core/types.h"
+#include "solvers/float_kernels.h"
 
 struct cholmod_factor_struct;
 
@@ -31,8 +31,8 @@ class SinglePrecisionFactor {
  private:
   using Range = std::pair<Index, Index>;  // supernodes [first, second)
   void split_in_two();
-  Eigen::Map<const Eigen::MatrixXf, 0, Eigen::OuterStride<>> block(Index s, Index& first, Index& width,
-                                                                  Index& height) const;
+  /// Supernode s's dense column-major block (its leading dimension is its height).
+  const float* block(Index s, Index& first, Index& width, Index& height) const;
   /// Supernode s of L y = P b; rows of the top chain go to `top_share` (unless null).
   void forward(Index s, float* below, float* top_share) const;
   void backward(Index s, float* below) const;
@@ -46,6 +46,7 @@ class SinglePrecisionFactor {
   std::array<std::vector<Range>, 2> parts_;  // whole subtrees, each part on a thread of its own
   Index top_first_supernode_ = 0;  // the top chain: supernodes from here to the last
   Index top_first_column_ = 0;
+  const FloatKernels* kernels_ = &float_kernels();  // the widest build the processor runs
   mutable std::vector<float> y_;  // workspaces
   mutable std::array<std::vector<float>, 2> below_, top_share_;  // a part's
 };
