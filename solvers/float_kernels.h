@@ -23,9 +23,9 @@ struct FloatKernels {
                                    const float* x, float* y);
 };
 
-/// The AVX2 build where the processor runs it, else the baseline.
+/// The AVX2 build where the processor runs it (AVX2 and FMA), else the baseline.
 const FloatKernels& float_kernels();
-/// Each build (for the tests): the second is null where the processor lacks AVX2.
+/// Each build (for the tests): the second is null where the processor lacks AVX2 or FMA.
 const FloatKernels& baseline_float_kernels();
 const FloatKernels* avx2_float_kernels();
 

@@ -2,8 +2,8 @@
 // (solvers/CMakeLists.txt defines KERF_KERNEL_SET and the flags). The AVX2
 // build renames Eigen's namespace, so that its template instantiations are
 // its own: the linker cannot hand an AVX2 copy of one to the baseline's code
-// (a weak symbol defined twice keeps one copy), which tests/unit's
-// AVX2ObjectsDefineNothingShared checks on the object file.
+// (a weak symbol defined twice keeps one copy), which the test
+// unit.Avx2KernelsDefineNoSharedSymbol checks on the object file.
 #ifdef KERF_OWN_EIGEN_NAMESPACE
 #define Eigen KERF_OWN_EIGEN_NAMESPACE
 #endif
