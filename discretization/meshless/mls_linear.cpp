@@ -42,6 +42,84 @@ void symmetric_eigenvalues(int m, double (&a)[4][4], double (&lambda)[4]) {
 
 namespace {
 
+// The row's two passes over its nodes (the moment sums, then the shape
+// functions), compiled for the baseline and for AVX2 + FMA (as the nodal
+// force pass is), on 4-vectors (zero-padded in 2D). The 32-byte vectors never
+// cross a call (the helpers are always inlined).
+#pragma GCC diagnostic ignored "-Wpsabi"
+typedef double Lanes4 __attribute__((vector_size(32)));
+
+/// sums[e] += p_i p_j (w, grad w) over the nodes, e running over the upper
+/// triangle of (i, j), p(x_I) = [1, (x_I - x) / h].
+template <int Dim>
+__attribute__((always_inline)) inline void add_moment_sums(const Vec3& x, std::span<const Vec3> nodes,
+                                                           std::span<const WeightWithGradient> w, double inverse_h,
+                                                           Lanes4* sums) {
+  constexpr int M = Dim + 1;
+  for (std::size_t I = 0; I < nodes.size(); ++I) {
+    double p[M];
+    p[0] = 1.0;
+    for (int i = 0; i < Dim; ++i) p[1 + i] = (nodes[I][i] - x[i]) * inverse_h;
+    const Lanes4 c = {w[I].value, w[I].gradient[0], w[I].gradient[1], Dim == 3 ? w[I].gradient[2] : 0.0};
+    int e = 0;
+    for (int i = 0; i < M; ++i)
+      for (int j = i; j < M; ++j, ++e) sums[e] += (p[i] * p[j]) * c;
+  }
+}
+
+/// phi_I = gamma . p w_I and grad phi_I = (dgamma_k . p) w_I + (gamma . p) grad w_I;
+/// basis[i] = (gamma_i, dgamma_1i, .., dgamma_Dim,i).
+template <int Dim>
+__attribute__((always_inline)) inline void write_shapes(const Vec3& x, std::span<const Vec3> nodes,
+                                                        std::span<const WeightWithGradient> w, double inverse_h,
+                                                        const Lanes4* basis, double* value, Vec3* gradient) {
+  for (std::size_t I = 0; I < nodes.size(); ++I) {
+    Lanes4 r = basis[0];  // p_0 = 1
+    for (int i = 0; i < Dim; ++i) r += ((nodes[I][i] - x[i]) * inverse_h) * basis[1 + i];
+    value[I] = r[0] * w[I].value;
+    for (int k = 0; k < Dim; ++k) gradient[I][k] = r[1 + k] * w[I].value + r[0] * w[I].gradient[k];
+  }
+}
+
+struct RowPasses {
+  void (*sums)(const Vec3&, std::span<const Vec3>, std::span<const WeightWithGradient>, double, Lanes4*);
+  void (*shapes)(const Vec3&, std::span<const Vec3>, std::span<const WeightWithGradient>, double, const Lanes4*,
+                 double*, Vec3*);
+};
+
+template <int Dim>
+void moment_sums_baseline(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w,
+                          double inverse_h, Lanes4* sums) {
+  add_moment_sums<Dim>(x, nodes, w, inverse_h, sums);
+}
+
+template <int Dim>
+__attribute__((target("avx2,fma"))) void moment_sums_avx2(const Vec3& x, std::span<const Vec3> nodes,
+                                                          std::span<const WeightWithGradient> w, double inverse_h,
+                                                          Lanes4* sums) {
+  add_moment_sums<Dim>(x, nodes, w, inverse_h, sums);
+}
+
+template <int Dim>
+void shapes_baseline(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w,
+                     double inverse_h, const Lanes4* basis, double* value, Vec3* gradient) {
+  write_shapes<Dim>(x, nodes, w, inverse_h, basis, value, gradient);
+}
+
+template <int Dim>
+__attribute__((target("avx2,fma"))) void shapes_avx2(const Vec3& x, std::span<const Vec3> nodes,
+                                                     std::span<const WeightWithGradient> w, double inverse_h,
+                                                     const Lanes4* basis, double* value, Vec3* gradient) {
+  write_shapes<Dim>(x, nodes, w, inverse_h, basis, value, gradient);
+}
+
+template <int Dim>
+RowPasses best_row_passes() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {moment_sums_avx2<Dim>, shapes_avx2<Dim>};
+  return {moment_sums_baseline<Dim>, shapes_baseline<Dim>};
+}
+
 template <int Dim>
 bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w, double h,
                   MlsShape& out) {
@@ -55,28 +133,20 @@ bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const We
   out.spanned_directions = -1;
   out.condition = std::numeric_limits<double>::infinity();
   if (n == 0) return false;
-  // p(x_I) = [1, (x_I - x) / h]. Column e of `sums` holds the e-th entry of
-  // the upper triangles of A, dA/dx_1 .. dA/dx_Dim: one pass, each node's
-  // products p_i p_j times its weight and weight gradient as one short vector.
+  // sums[e] holds the e-th entry of the upper triangles of A, dA/dx_1 ..
+  // dA/dx_Dim: one pass, each node's products p_i p_j times its weight and
+  // weight gradient as one short vector.
   constexpr int upper = M * (M + 1) / 2;
-  using Weights = Eigen::Matrix<double, 4, 1>;  // w, grad w (zero-padded in 2D): two SIMD registers
-  Eigen::Matrix<double, 4, upper> sums = Eigen::Matrix<double, 4, upper>::Zero();
+  static const RowPasses passes = best_row_passes<Dim>();
+  Lanes4 sums[upper] = {};
   const double inverse_h = 1.0 / h;
-  for (std::size_t I = 0; I < n; ++I) {
-    double p[M];
-    p[0] = 1.0;
-    for (int i = 0; i < Dim; ++i) p[1 + i] = (nodes[I][i] - x[i]) * inverse_h;
-    const Weights c(w[I].value, w[I].gradient[0], w[I].gradient[1], Dim == 3 ? w[I].gradient[2] : 0.0);
-    int e = 0;
-    for (int i = 0; i < M; ++i)
-      for (int j = i; j < M; ++j, ++e) sums.col(e) += (p[i] * p[j]) * c;
-  }
+  passes.sums(x, nodes, w, inverse_h, sums);
   double a[4][4] = {}, lambda[4];
   Square moment, derivative[Dim];
   for (int i = 0, e = 0; i < M; ++i)
     for (int j = i; j < M; ++j, ++e) {
-      a[i][j] = a[j][i] = moment(i, j) = moment(j, i) = sums(0, e);
-      for (int k = 0; k < Dim; ++k) derivative[k](i, j) = derivative[k](j, i) = sums(1 + k, e);
+      a[i][j] = a[j][i] = moment(i, j) = moment(j, i) = sums[e][0];
+      for (int k = 0; k < Dim; ++k) derivative[k](i, j) = derivative[k](j, i) = sums[e][1 + k];
     }
   symmetric_eigenvalues(M, a, lambda);
   out.condition = lambda[M - 1] / std::max(lambda[0], 0.0);
@@ -86,14 +156,12 @@ bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const We
   const Column gamma = factor.solve(Column::Unit(0));
   Column dgamma[Dim];
   for (int k = 0; k < Dim; ++k) dgamma[k] = factor.solve(Column::Unit(1 + k) * inverse_h - derivative[k] * gamma);
-  for (std::size_t I = 0; I < n; ++I) {
-    Column p;
-    p[0] = 1.0;
-    for (int i = 0; i < Dim; ++i) p[1 + i] = (nodes[I][i] - x[i]) * inverse_h;
-    const double gp = gamma.dot(p);
-    out.value[I] = gp * w[I].value;
-    for (int k = 0; k < Dim; ++k) out.gradient[I][k] = dgamma[k].dot(p) * w[I].value + gp * w[I].gradient[k];
+  Lanes4 basis[M] = {};
+  for (int i = 0; i < M; ++i) {
+    basis[i][0] = gamma[i];
+    for (int k = 0; k < Dim; ++k) basis[i][1 + k] = dgamma[k][i];
   }
+  passes.shapes(x, nodes, w, inverse_h, basis, out.value.data(), out.gradient.data());
   return true;
 }
 
