@@ -11,8 +11,10 @@ namespace kerf {
 
 class SolutionHistory {
  public:
-  /// Keeps at most `capacity` solutions, the oldest dropped first.
-  explicit SolutionHistory(int capacity) : capacity_(capacity) {}
+  /// Keeps at most `capacity` solutions (0 to max_capacity), the oldest dropped first.
+  explicit SolutionHistory(int capacity);
+  /// A V is one pass over A with a row's sums in registers, for this many columns.
+  static constexpr int max_capacity = 8;
 
   /// Adds x; solutions of another length (the dofs changed) are forgotten.
   void remember(const Vector& x);
@@ -30,10 +32,11 @@ class SolutionHistory {
   int count_ = 0;  // columns of solutions_ in use
   int next_ = 0;   // the column the next solution overwrites once all are in use
   // One solution a column, in no particular order (a span is all that counts);
-  // row-major, so that A V reads each row of V as one contiguous run.
-  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  // row-major with max_capacity columns (those not in use zero), so that A V
+  // reads each row of V as one contiguous run of fixed length.
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, max_capacity, Eigen::RowMajor>;
   RowMajor solutions_;
-  mutable RowMajor products_;  // A V, a workspace kept between solves (n x capacity)
+  mutable RowMajor products_;  // A V, a workspace kept between solves
 };
 
 }  // namespace kerf

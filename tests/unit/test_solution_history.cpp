@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/check.h"
 #include "solvers/solution_history.h"
 
 namespace kerf {
@@ -62,8 +63,8 @@ TEST(SolutionHistory, StartIsTheSolutionWhenTheSpanHoldsIt) {
   EXPECT_LT(r0.norm(), 1e-10 * s.b.norm());
 }
 
-// Capacity 8 (the implicit steps') takes its own pass over A: partly filled,
-// full, and after older solutions were dropped.
+// Partly filled, full, and after older solutions were dropped; at capacity 8
+// (the implicit steps') every column of the pass over A is in use.
 TEST(SolutionHistory, StartIsTheBestPointOfTheSpanInTheEnergyNorm) {
   for (const auto& [capacity, remembered] : {std::pair{5, 5}, {8, 3}, {8, 8}, {8, 11}}) {
     System s;
@@ -139,6 +140,12 @@ TEST(SolutionHistory, KeepsTheLastSolutionsOfTheCurrentLength) {
   EXPECT_EQ(history.size(), 1);
   history.start(s.A, s.b, x0, r0);  // a start of the wrong length is no start
   EXPECT_TRUE(x0.isZero());
+}
+
+TEST(SolutionHistory, RefusesMoreSolutionsThanItsPassTakes) {
+  EXPECT_NO_THROW(SolutionHistory(SolutionHistory::max_capacity));
+  EXPECT_THROW(SolutionHistory(SolutionHistory::max_capacity + 1), Error);
+  EXPECT_THROW(SolutionHistory(-1), Error);
 }
 
 }  // namespace
