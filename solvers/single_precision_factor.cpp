@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/parallel_failure.h"
+#include "solvers/float_kernels.h"
 
 namespace kerf {
 namespace {
@@ -112,8 +113,9 @@ void SinglePrecisionFactor::forward(Index s, float* below, float* top_share) con
   Index first, width, height;
   const float* L = block(s, first, width, height);
   float* top = y_.data() + first;
-  kernels_->lower_solve(L, height, width, top);
-  kernels_->times(L + width, height, height - width, width, top, below);
+  const FloatKernels& kernels = float_kernels();  // the widest build the processor runs
+  kernels.lower_solve(L, height, width, top);
+  kernels.times(L + width, height, height - width, width, top, below);
   const int* row = rows_.data() + row_start_[s] + width;
   for (Index i = 0; i < height - width; ++i) {
     if (row[i] < top_first_column_ || !top_share)
@@ -129,8 +131,9 @@ void SinglePrecisionFactor::backward(Index s, float* below) const {
   const int* row = rows_.data() + row_start_[s] + width;
   for (Index i = 0; i < height - width; ++i) below[i] = y_[row[i]];
   float* top = y_.data() + first;
-  kernels_->subtract_transpose_times(L + width, height, height - width, width, below, top);
-  kernels_->lower_transpose_solve(L, height, width, top);
+  const FloatKernels& kernels = float_kernels();
+  kernels.subtract_transpose_times(L + width, height, height - width, width, below, top);
+  kernels.lower_transpose_solve(L, height, width, top);
 }
 
 void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {

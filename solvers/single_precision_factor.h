@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "core/types.h"
-#include "solvers/float_kernels.h"
 
 struct cholmod_factor_struct;
 
@@ -46,7 +45,6 @@ class SinglePrecisionFactor {
   std::array<std::vector<Range>, 2> parts_;  // whole subtrees, each part on a thread of its own
   Index top_first_supernode_ = 0;  // the top chain: supernodes from here to the last
   Index top_first_column_ = 0;
-  const FloatKernels* kernels_ = &float_kernels();  // the widest build the processor runs
   mutable std::vector<float> y_;  // workspaces
   mutable std::array<std::vector<float>, 2> below_, top_share_;  // a part's
 };
