@@ -42,87 +42,17 @@ void symmetric_eigenvalues(int m, double (&a)[4][4], double (&lambda)[4]) {
 
 namespace {
 
-// The row's two passes over its nodes (the moment sums, then the shape
-// functions), compiled for the baseline and for AVX2 + FMA (as the nodal
-// force pass is), on 4-vectors (zero-padded in 2D). The 32-byte vectors never
-// cross a call (the helpers are always inlined).
+// The row is compiled for the baseline and for AVX2 + FMA (as the nodal force
+// pass is); its two passes over the nodes run on 4-vectors (w and grad w,
+// zero-padded in 2D), one register with AVX2. The 32-byte vectors never cross
+// a call (everything holding them is inlined into the two builds).
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef double Lanes4 __attribute__((vector_size(32)));
 
-/// sums[e] += p_i p_j (w, grad w) over the nodes, e running over the upper
-/// triangle of (i, j), p(x_I) = [1, (x_I - x) / h].
 template <int Dim>
-__attribute__((always_inline)) inline void add_moment_sums(const Vec3& x, std::span<const Vec3> nodes,
-                                                           std::span<const WeightWithGradient> w, double inverse_h,
-                                                           Lanes4* sums) {
-  constexpr int M = Dim + 1;
-  for (std::size_t I = 0; I < nodes.size(); ++I) {
-    double p[M];
-    p[0] = 1.0;
-    for (int i = 0; i < Dim; ++i) p[1 + i] = (nodes[I][i] - x[i]) * inverse_h;
-    const Lanes4 c = {w[I].value, w[I].gradient[0], w[I].gradient[1], Dim == 3 ? w[I].gradient[2] : 0.0};
-    int e = 0;
-    for (int i = 0; i < M; ++i)
-      for (int j = i; j < M; ++j, ++e) sums[e] += (p[i] * p[j]) * c;
-  }
-}
-
-/// phi_I = gamma . p w_I and grad phi_I = (dgamma_k . p) w_I + (gamma . p) grad w_I;
-/// basis[i] = (gamma_i, dgamma_1i, .., dgamma_Dim,i).
-template <int Dim>
-__attribute__((always_inline)) inline void write_shapes(const Vec3& x, std::span<const Vec3> nodes,
-                                                        std::span<const WeightWithGradient> w, double inverse_h,
-                                                        const Lanes4* basis, double* value, Vec3* gradient) {
-  for (std::size_t I = 0; I < nodes.size(); ++I) {
-    Lanes4 r = basis[0];  // p_0 = 1
-    for (int i = 0; i < Dim; ++i) r += ((nodes[I][i] - x[i]) * inverse_h) * basis[1 + i];
-    value[I] = r[0] * w[I].value;
-    for (int k = 0; k < Dim; ++k) gradient[I][k] = r[1 + k] * w[I].value + r[0] * w[I].gradient[k];
-  }
-}
-
-struct RowPasses {
-  void (*sums)(const Vec3&, std::span<const Vec3>, std::span<const WeightWithGradient>, double, Lanes4*);
-  void (*shapes)(const Vec3&, std::span<const Vec3>, std::span<const WeightWithGradient>, double, const Lanes4*,
-                 double*, Vec3*);
-};
-
-template <int Dim>
-void moment_sums_baseline(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w,
-                          double inverse_h, Lanes4* sums) {
-  add_moment_sums<Dim>(x, nodes, w, inverse_h, sums);
-}
-
-template <int Dim>
-__attribute__((target("avx2,fma"))) void moment_sums_avx2(const Vec3& x, std::span<const Vec3> nodes,
-                                                          std::span<const WeightWithGradient> w, double inverse_h,
-                                                          Lanes4* sums) {
-  add_moment_sums<Dim>(x, nodes, w, inverse_h, sums);
-}
-
-template <int Dim>
-void shapes_baseline(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w,
-                     double inverse_h, const Lanes4* basis, double* value, Vec3* gradient) {
-  write_shapes<Dim>(x, nodes, w, inverse_h, basis, value, gradient);
-}
-
-template <int Dim>
-__attribute__((target("avx2,fma"))) void shapes_avx2(const Vec3& x, std::span<const Vec3> nodes,
-                                                     std::span<const WeightWithGradient> w, double inverse_h,
-                                                     const Lanes4* basis, double* value, Vec3* gradient) {
-  write_shapes<Dim>(x, nodes, w, inverse_h, basis, value, gradient);
-}
-
-template <int Dim>
-RowPasses best_row_passes() {
-  __builtin_cpu_init();
-  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")) return {moment_sums_avx2<Dim>, shapes_avx2<Dim>};
-  return {moment_sums_baseline<Dim>, shapes_baseline<Dim>};
-}
-
-template <int Dim>
-bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w, double h,
-                  MlsShape& out) {
+__attribute__((always_inline)) inline bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes,
+                                                        std::span<const WeightWithGradient> w, double h,
+                                                        MlsShape& out) {
   constexpr int M = Dim + 1;
   using Column = Eigen::Matrix<double, M, 1>;
   using Square = Eigen::Matrix<double, M, M>;
@@ -133,14 +63,21 @@ bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const We
   out.spanned_directions = -1;
   out.condition = std::numeric_limits<double>::infinity();
   if (n == 0) return false;
-  // sums[e] holds the e-th entry of the upper triangles of A, dA/dx_1 ..
-  // dA/dx_Dim: one pass, each node's products p_i p_j times its weight and
-  // weight gradient as one short vector.
+  // p(x_I) = [1, (x_I - x) / h]. sums[e] holds the e-th entry of the upper
+  // triangles of A, dA/dx_1 .. dA/dx_Dim: one pass, each node's products
+  // p_i p_j times its weight and weight gradient as one short vector.
   constexpr int upper = M * (M + 1) / 2;
-  static const RowPasses passes = best_row_passes<Dim>();
   Lanes4 sums[upper] = {};
   const double inverse_h = 1.0 / h;
-  passes.sums(x, nodes, w, inverse_h, sums);
+  for (std::size_t I = 0; I < n; ++I) {
+    double p[M];
+    p[0] = 1.0;
+    for (int i = 0; i < Dim; ++i) p[1 + i] = (nodes[I][i] - x[i]) * inverse_h;
+    const Lanes4 c = {w[I].value, w[I].gradient[0], w[I].gradient[1], Dim == 3 ? w[I].gradient[2] : 0.0};
+    int e = 0;
+    for (int i = 0; i < M; ++i)
+      for (int j = i; j < M; ++j, ++e) sums[e] += (p[i] * p[j]) * c;
+  }
   double a[4][4] = {}, lambda[4];
   Square moment, derivative[Dim];
   for (int i = 0, e = 0; i < M; ++i)
@@ -156,20 +93,49 @@ bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes, std::span<const We
   const Column gamma = factor.solve(Column::Unit(0));
   Column dgamma[Dim];
   for (int k = 0; k < Dim; ++k) dgamma[k] = factor.solve(Column::Unit(1 + k) * inverse_h - derivative[k] * gamma);
+  // phi_I = (gamma . p) w_I, grad phi_I = (dgamma_k . p) w_I + (gamma . p) grad w_I: the four dot
+  // products as one vector sum over the basis, basis[i] = (gamma_i, dgamma_1i, .., dgamma_Dim,i).
   Lanes4 basis[M] = {};
   for (int i = 0; i < M; ++i) {
     basis[i][0] = gamma[i];
     for (int k = 0; k < Dim; ++k) basis[i][1 + k] = dgamma[k][i];
   }
-  passes.shapes(x, nodes, w, inverse_h, basis, out.value.data(), out.gradient.data());
+  for (std::size_t I = 0; I < n; ++I) {
+    Lanes4 r = basis[0];  // p_0 = 1
+    for (int i = 0; i < Dim; ++i) r += ((nodes[I][i] - x[i]) * inverse_h) * basis[1 + i];
+    out.value[I] = r[0] * w[I].value;
+    for (int k = 0; k < Dim; ++k) out.gradient[I][k] = r[1 + k] * w[I].value + r[0] * w[I].gradient[k];
+  }
   return true;
+}
+
+using LinearRow = bool (*)(const Vec3&, std::span<const Vec3>, std::span<const WeightWithGradient>, double,
+                           MlsShape&);
+
+template <int Dim>
+bool linear_baseline(const Vec3& x, std::span<const Vec3> nodes, std::span<const WeightWithGradient> w, double h,
+                     MlsShape& out) {
+  return linear_fixed<Dim>(x, nodes, w, h, out);
+}
+
+template <int Dim>
+__attribute__((target("avx2,fma"))) bool linear_avx2(const Vec3& x, std::span<const Vec3> nodes,
+                                                     std::span<const WeightWithGradient> w, double h, MlsShape& out) {
+  return linear_fixed<Dim>(x, nodes, w, h, out);
+}
+
+template <int Dim>
+LinearRow best_linear_row() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? linear_avx2<Dim> : linear_baseline<Dim>;
 }
 
 }  // namespace
 
 bool mls_linear_shape_functions(int dim, const Vec3& x, std::span<const Vec3> nodes,
                                 std::span<const WeightWithGradient> w, double scale, MlsShape& out) {
-  return dim == 3 ? linear_fixed<3>(x, nodes, w, scale, out) : linear_fixed<2>(x, nodes, w, scale, out);
+  static const LinearRow row3 = best_linear_row<3>(), row2 = best_linear_row<2>();
+  return (dim == 3 ? row3 : row2)(x, nodes, w, scale, out);
 }
 
 }  // namespace kerf
