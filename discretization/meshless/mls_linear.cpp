@@ -1,43 +1,71 @@
 #include "discretization/meshless/mls_linear.h"
 
-#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace kerf {
 
-void symmetric_eigenvalues(int m, double (&a)[4][4], double (&lambda)[4]) {
-  // A rotation only where the off-diagonal entry is not negligible against
-  // the geometric mean of its two diagonal entries (Demmel and Veselic): the
-  // small eigenvalues of a positive definite matrix keep their relative accuracy.
+namespace {
+
+/// One Jacobi rotation zeroing a[p][q], if it is not negligible against the
+/// geometric mean of its two diagonal entries (Demmel and Veselic: the small
+/// eigenvalues of a positive definite matrix keep their relative accuracy).
+template <int M>
+__attribute__((always_inline)) inline bool rotate(double (&a)[4][4], int p, int q) {
   constexpr double tolerance = 1e-15;
+  const double apq = a[p][q];
+  if (!(std::abs(apq) > tolerance * std::sqrt(std::abs(a[p][p] * a[q][q])))) return false;
+  // t = tan of the angle = sign(theta) / (|theta| + sqrt(theta^2 + 1)), theta =
+  // d / (2 a_pq), written without theta: a division fewer on the chain (and
+  // d^2 overflows only for entries past 1e150, far beyond any moment matrix's).
+  const double d = a[q][q] - a[p][p], root = std::sqrt(d * d + 4.0 * apq * apq), sum = std::abs(d) + root;
+  const double t = 2.0 * std::copysign(1.0, d) * apq / sum;
+  const double c = std::sqrt(sum / (2.0 * root)), s = t * c;
+  a[p][p] -= t * apq;
+  a[q][q] += t * apq;
+  a[p][q] = a[q][p] = 0.0;
+  for (int r = 0; r < M; ++r) {
+    if (r == p || r == q) continue;
+    const double arp = a[r][p], arq = a[r][q];
+    a[r][p] = a[p][r] = c * arp - s * arq;
+    a[r][q] = a[q][r] = s * arp + c * arq;
+  }
+  return true;
+}
+
+/// Jacobi sweeps with the size fixed (the loops unroll). For 4 x 4 the pairs
+/// go in the parallel order (0,1)(2,3), (0,2)(1,3), (0,3)(1,2): each step's
+/// two rotations touch other rows' diagonals, so the processor overlaps their
+/// chains of divisions and square roots, which bound a rotation's time.
+template <int M>
+void jacobi_eigenvalues(double (&a)[4][4], double (&lambda)[4]) {
+  constexpr int pairs = M * (M - 1) / 2;
+  constexpr int order4[6][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {0, 3}, {1, 2}};
+  constexpr int order3[3][2] = {{0, 1}, {0, 2}, {1, 2}};
   for (int sweep = 0; sweep < 40; ++sweep) {
     bool rotated = false;
-    for (int p = 0; p < m; ++p)
-      for (int q = p + 1; q < m; ++q) {
-        const double apq = a[p][q];
-        if (!(std::abs(apq) > tolerance * std::sqrt(std::abs(a[p][p] * a[q][q])))) continue;
-        rotated = true;
-        const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
-        const double t = std::abs(theta) > 1e150
-                             ? 0.5 / theta
-                             : std::copysign(1.0, theta) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
-        const double c = 1.0 / std::sqrt(t * t + 1.0), s = t * c;
-        a[p][p] -= t * apq;
-        a[q][q] += t * apq;
-        a[p][q] = a[q][p] = 0.0;
-        for (int r = 0; r < m; ++r) {
-          if (r == p || r == q) continue;
-          const double arp = a[r][p], arq = a[r][q];
-          a[r][p] = a[p][r] = c * arp - s * arq;
-          a[r][q] = a[q][r] = s * arp + c * arq;
-        }
-      }
+    for (int k = 0; k < pairs; ++k) {
+      const int p = M == 4 ? order4[k][0] : M == 3 ? order3[k][0] : 0;
+      const int q = M == 4 ? order4[k][1] : M == 3 ? order3[k][1] : 1;
+      rotated |= rotate<M>(a, p, q);
+    }
     if (!rotated) break;
   }
-  for (int i = 0; i < m; ++i) lambda[i] = a[i][i];
-  std::sort(lambda, lambda + m);
+  for (int i = 0; i < M; ++i) lambda[i] = a[i][i];
+  std::sort(lambda, lambda + M);
+}
+
+}  // namespace
+
+void symmetric_eigenvalues(int m, double (&a)[4][4], double (&lambda)[4]) {
+  switch (m) {
+    case 1: lambda[0] = a[0][0]; return;
+    case 2: return jacobi_eigenvalues<2>(a, lambda);
+    case 3: return jacobi_eigenvalues<3>(a, lambda);
+    default: return jacobi_eigenvalues<4>(a, lambda);
+  }
 }
 
 namespace {
@@ -49,13 +77,50 @@ namespace {
 #pragma GCC diagnostic ignored "-Wpsabi"
 typedef double Lanes4 __attribute__((vector_size(32)));
 
+/// Where entry (i, j) of a symmetric M x M matrix sits in its upper triangle, row by row.
+template <int M>
+constexpr int upper_entry(int i, int j) {
+  if (i > j) std::swap(i, j);
+  return i * M - i * (i - 1) / 2 + (j - i);
+}
+
+/// L L^T of a small positive definite matrix, the size fixed so that the
+/// loops unroll in the row's two builds (Eigen's LLT was a call a solve,
+/// compiled for the baseline); solves in place, one right-hand side a lane.
+template <int M>
+struct SmallCholesky {
+  double l[M][M] = {}, inverse_diagonal[M] = {};
+  __attribute__((always_inline)) explicit SmallCholesky(const double (&a)[4][4]) {
+    for (int j = 0; j < M; ++j) {
+      double d = a[j][j];
+      for (int k = 0; k < j; ++k) d -= l[j][k] * l[j][k];
+      l[j][j] = std::sqrt(d);
+      inverse_diagonal[j] = 1.0 / l[j][j];
+      for (int i = j + 1; i < M; ++i) {
+        double v = a[i][j];
+        for (int k = 0; k < j; ++k) v -= l[i][k] * l[j][k];
+        l[i][j] = v * inverse_diagonal[j];
+      }
+    }
+  }
+  template <class T>
+  __attribute__((always_inline)) void solve(T (&b)[M]) const {
+    for (int i = 0; i < M; ++i) {
+      for (int k = 0; k < i; ++k) b[i] -= l[i][k] * b[k];
+      b[i] *= inverse_diagonal[i];
+    }
+    for (int i = M - 1; i >= 0; --i) {
+      for (int k = i + 1; k < M; ++k) b[i] -= l[k][i] * b[k];
+      b[i] *= inverse_diagonal[i];
+    }
+  }
+};
+
 template <int Dim>
 __attribute__((always_inline)) inline bool linear_fixed(const Vec3& x, std::span<const Vec3> nodes,
                                                         std::span<const WeightWithGradient> w, double h,
                                                         MlsShape& out) {
   constexpr int M = Dim + 1;
-  using Column = Eigen::Matrix<double, M, 1>;
-  using Square = Eigen::Matrix<double, M, M>;
   const std::size_t n = nodes.size();
   out.value.assign(n, 0.0);
   out.gradient.assign(n, Vec3::Zero());
@@ -78,28 +143,29 @@ __attribute__((always_inline)) inline bool linear_fixed(const Vec3& x, std::span
     for (int i = 0; i < M; ++i)
       for (int j = i; j < M; ++j, ++e) sums[e] += (p[i] * p[j]) * c;
   }
-  double a[4][4] = {}, lambda[4];
-  Square moment, derivative[Dim];
+  double a[4][4] = {}, moment[4][4] = {}, lambda[4];
   for (int i = 0, e = 0; i < M; ++i)
-    for (int j = i; j < M; ++j, ++e) {
-      a[i][j] = a[j][i] = moment(i, j) = moment(j, i) = sums[e][0];
-      for (int k = 0; k < Dim; ++k) derivative[k](i, j) = derivative[k](j, i) = sums[e][1 + k];
-    }
-  symmetric_eigenvalues(M, a, lambda);
+    for (int j = i; j < M; ++j, ++e) a[i][j] = a[j][i] = moment[i][j] = moment[j][i] = sums[e][0];
+  jacobi_eigenvalues<M>(a, lambda);
   out.condition = lambda[M - 1] / std::max(lambda[0], 0.0);
   if (!(lambda[0] > 1e-12 * lambda[M - 1])) return false;
-  const Eigen::LLT<Square> factor(moment);
-  // gamma = A^-1 p(x) and its derivatives (Belytschko et al.); p(x) = e_0, dp/dx_k = e_{1+k} / h.
-  const Column gamma = factor.solve(Column::Unit(0));
-  Column dgamma[Dim];
-  for (int k = 0; k < Dim; ++k) dgamma[k] = factor.solve(Column::Unit(1 + k) * inverse_h - derivative[k] * gamma);
-  // phi_I = (gamma . p) w_I, grad phi_I = (dgamma_k . p) w_I + (gamma . p) grad w_I: the four dot
-  // products as one vector sum over the basis, basis[i] = (gamma_i, dgamma_1i, .., dgamma_Dim,i).
-  Lanes4 basis[M] = {};
+  // gamma = A^-1 p(x) and its derivatives (Belytschko et al.); p(x) = e_0, dp/dx_k = e_{1+k} / h:
+  // dgamma_k = A^-1 (e_{1+k} / h - dA_k gamma), the Dim right-hand sides in lanes 1..Dim of one
+  // solve, so basis[i] = (gamma_i, dgamma_1i, .., dgamma_Dim,i) for the pass below.
+  const SmallCholesky<M> factor(moment);
+  double gamma[M] = {1.0};
+  factor.solve(gamma);
+  Lanes4 basis[M];
   for (int i = 0; i < M; ++i) {
-    basis[i][0] = gamma[i];
-    for (int k = 0; k < Dim; ++k) basis[i][1 + k] = dgamma[k][i];
+    Lanes4 dA_gamma = {};
+    for (int j = 0; j < M; ++j) dA_gamma += sums[upper_entry<M>(i, j)] * gamma[j];
+    basis[i] = -dA_gamma;
+    if (i > 0) basis[i][i] += inverse_h;
   }
+  factor.solve(basis);
+  for (int i = 0; i < M; ++i) basis[i][0] = gamma[i];
+  // phi_I = (gamma . p) w_I, grad phi_I = (dgamma_k . p) w_I + (gamma . p) grad w_I: the four dot
+  // products as one vector sum over the basis.
   for (std::size_t I = 0; I < n; ++I) {
     Lanes4 r = basis[0];  // p_0 = 1
     for (int i = 0; i < Dim; ++i) r += ((nodes[I][i] - x[i]) * inverse_h) * basis[1 + i];

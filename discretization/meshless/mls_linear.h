@@ -20,8 +20,8 @@ namespace kerf {
 bool mls_linear_shape_functions(int dim, const Vec3& x, std::span<const Vec3> nodes,
                                 std::span<const WeightWithGradient> w, double scale, MlsShape& out);
 
-/// The eigenvalues of a symmetric m x m matrix (m <= 4, row-major, full),
-/// ascending, by cyclic Jacobi rotations; `a` is overwritten.
+/// The eigenvalues of a symmetric m x m matrix (m <= 4, row-major, full,
+/// entries below 1e150 in size), ascending, by Jacobi rotations; `a` is overwritten.
 void symmetric_eigenvalues(int m, double (&a)[4][4], double (&lambda)[4]);
 
 }  // namespace kerf
