@@ -26,28 +26,6 @@ int mls_basis_size(int dim, MlsBasis basis) {
   return 1 + dim + (basis == MlsBasis::quadratic ? dim * (dim + 1) / 2 : 0);
 }
 
-namespace {
-/// w(r) = 1 - 6 r^2 + 8 r^3 - 3 r^4 for r < 1.
-double quartic(double r) { return 1.0 - 6.0 * r * r + 8.0 * r * r * r - 3.0 * r * r * r * r; }
-}  // namespace
-
-double quartic_weight_value(const Vec3& x, const Vec3& node, double radius) {
-  const double r = (x - node).norm() / radius;
-  return r >= 1.0 ? 0.0 : quartic(r);
-}
-
-WeightWithGradient quartic_weight_with_gradient(const Vec3& x, const Vec3& node, double radius) {
-  WeightWithGradient w;
-  const Vec3 s = x - node;
-  const double r = s.norm() / radius;
-  if (r >= 1.0) return w;
-  const double a = 1.0 - r;
-  w.value = quartic(r);
-  // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
-  w.gradient = -12.0 * a * a * s / (radius * radius);
-  return w;
-}
-
 WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian) {
   const WeightWithGradient first = quartic_weight_with_gradient(x, node, radius);
   WeightValue w{first.value, first.gradient, Mat3::Zero()};

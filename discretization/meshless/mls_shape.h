@@ -24,11 +24,27 @@ struct WeightWithGradient {
   double value = 0.0;
   Vec3 gradient = Vec3::Zero();
 };
-WeightWithGradient quartic_weight_with_gradient(const Vec3& x, const Vec3& node, double radius);
+/// w(r) for r < 1.
+inline double quartic(double r) { return 1.0 - 6.0 * r * r + 8.0 * r * r * r - 3.0 * r * r * r * r; }
+/// Inline, as quartic_weight_value: every table row and stabilisation pair row calls them for each of its nodes.
+inline WeightWithGradient quartic_weight_with_gradient(const Vec3& x, const Vec3& node, double radius) {
+  WeightWithGradient w;
+  const Vec3 s = x - node;
+  const double r = s.norm() / radius;
+  if (r >= 1.0) return w;
+  const double a = 1.0 - r;
+  w.value = quartic(r);
+  // dw/dr = -12 r (1 - r)^2, so grad w = -12 (1 - r)^2 s / d^2: smooth at the node.
+  w.gradient = -12.0 * a * a * s / (radius * radius);
+  return w;
+}
 /// Without `with_hessian`, the Hessian is left zero (shape functions without second derivatives).
 WeightValue quartic_weight(const Vec3& x, const Vec3& node, double radius, bool with_hessian = true);
 /// Its value alone (no derivatives), where only the value is wanted.
-double quartic_weight_value(const Vec3& x, const Vec3& node, double radius);
+inline double quartic_weight_value(const Vec3& x, const Vec3& node, double radius) {
+  const double r = (x - node).norm() / radius;
+  return r >= 1.0 ? 0.0 : quartic(r);
+}
 
 /// Number of basis terms: 1 + dim (linear), plus dim (dim + 1) / 2 (quadratic).
 int mls_basis_size(int dim, MlsBasis basis);
