@@ -27,15 +27,18 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
   size_lattice(padding);
   const bool grows =
       before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
+  const bool same_points = before && same_lattice(*before);
   const CutRegionIndex added(cut, grows ? before->pieces_ : pieces_, pieces_, frame_);  // the new pieces
+  if (before) changed_.assign(columns_.size(), 0);
   ParallelFailure failure;
 #pragma omp parallel for schedule(static)
   for (Index c = 0; c < static_cast<Index>(columns_.size()); ++c)
     failure.run([&] {
       const Vec3 x = column_point(c);
-      const Index old = grows ? column_in(*before, c) : -1;
-      if (old < 0) {
+      const Index old = same_points ? column_in(*before, c) : -1;
+      if (!grows || old < 0) {
         columns_[c] = column_at(x);
+        if (before) changed_[c] = !same(columns_[c], old >= 0 ? before->columns_[old] : before->column_at(x), x);
         return;
       }
       columns_[c] = before->columns_[old];
@@ -44,9 +47,32 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       // each step changes the columns around its tip only).
       if (added.distance_bound(x) > columns_[c].d_plus * (1.0 + 1e-12)) return;
       const CutRegion region = added.region(x);
-      if (region.d_plus < columns_[c].d_plus) columns_[c] = column_of(region, x);
+      if (region.d_plus >= columns_[c].d_plus) return;
+      columns_[c] = column_of(region, x);
+      changed_[c] = !same(columns_[c], before->columns_[old], x);
     });
   failure.rethrow_if_failed();
+  if (before) dilate_changes();
+}
+
+void EnrichmentGrid::dilate_changes() {
+  // One column of dilation: a change narrower than the spacing still shows.
+  std::vector<char> dilated(changed_);
+  const Index n0 = count_[0], n1 = dim_ == 3 ? count_[1] : 1;
+  changed_box_ = {n0, -1, n1, -1};
+  for (Index c = 0; c < static_cast<Index>(changed_.size()); ++c) {
+    if (!changed_[c]) continue;
+    const Index i = c % n0, j = c / n0;
+    for (Index dj = -1; dj <= 1; ++dj)
+      for (Index di = -1; di <= 1; ++di) {
+        const Index ii = i + di, jj = j + dj;
+        if (ii < 0 || ii >= n0 || jj < 0 || jj >= n1) continue;
+        dilated[ii + n0 * jj] = 1;
+        changed_box_ = {std::min(changed_box_[0], ii), std::max(changed_box_[1], ii), std::min(changed_box_[2], jj),
+                        std::max(changed_box_[3], jj)};
+      }
+  }
+  changed_ = std::move(dilated);
 }
 
 void EnrichmentGrid::size_lattice(double padding) {
@@ -201,47 +227,20 @@ bool EnrichmentGrid::same(const Column& a, const Column& b, const Vec3& base) co
   return z1 < bottom - spacing_ || z0 > top + spacing_;
 }
 
-std::vector<char> EnrichmentGrid::changed_columns(const EnrichmentGrid& before) const {
-  const Index columns = static_cast<Index>(columns_.size());
-  std::vector<char> changed(columns, 0);
-  const bool same_points = same_lattice(before);
-  ParallelFailure failure;
-#pragma omp parallel for schedule(static)
-  for (Index c = 0; c < columns; ++c)
-    failure.run([&] {
-      const Vec3 base = column_point(c);
-      const Index old = same_points ? column_in(before, c) : -1;
-      changed[c] = !same(columns_[c], old >= 0 ? before.columns_[old] : before.column_at(base), base);
-    });
-  failure.rethrow_if_failed();
-  // One column of dilation: a change narrower than the spacing still shows.
-  std::vector<char> dilated(changed);
-  const Index n0 = count_[0], n1 = dim_ == 3 ? count_[1] : 1;
-  for (Index c = 0; c < columns; ++c) {
-    if (!changed[c]) continue;
-    const Index i = c % n0, j = c / n0;
-    for (Index dj = -1; dj <= 1; ++dj)
-      for (Index di = -1; di <= 1; ++di) {
-        const Index ii = i + di, jj = j + dj;
-        if (ii >= 0 && ii < n0 && jj >= 0 && jj < n1) dilated[ii + n0 * jj] = 1;
-      }
-  }
-  return dilated;
-}
-
-bool EnrichmentGrid::reaches(const std::vector<char>& columns, const Vec3& x, double radius) const {
+bool EnrichmentGrid::reaches_changed_column(const Vec3& x, double radius) const {
+  if (changed_box_[1] < changed_box_[0]) return false;  // nothing changed
   const Vec3 q = coordinates(x);
-  const Index n1 = dim_ == 3 ? count_[1] : 1;
-  auto range = [&](int a, Index n) {
+  // The columns the ball's projection spans, clipped to the changed ones' box.
+  auto range = [&](int a, Index low, Index high) {
     const double r = (q[a] - low_[a]) / spacing_, span = radius / spacing_;
-    return std::pair<Index, Index>{std::max<Index>(0, static_cast<Index>(std::ceil(r - span))),
-                                   std::min<Index>(n - 1, static_cast<Index>(std::floor(r + span)))};
+    return std::pair<Index, Index>{std::max<Index>(low, static_cast<Index>(std::ceil(r - span))),
+                                   std::min<Index>(high, static_cast<Index>(std::floor(r + span)))};
   };
-  const auto [i0, i1] = range(0, count_[0]);
-  const auto [j0, j1] = dim_ == 3 ? range(1, n1) : std::pair<Index, Index>{0, 0};
+  const auto [i0, i1] = range(0, changed_box_[0], changed_box_[1]);
+  const auto [j0, j1] = dim_ == 3 ? range(1, changed_box_[2], changed_box_[3]) : std::pair<Index, Index>{0, 0};
   for (Index j = j0; j <= j1; ++j)
     for (Index i = i0; i <= i1; ++i) {
-      if (!columns[i + count_[0] * j]) continue;
+      if (!changed_[i + count_[0] * j]) continue;
       // The column is a line along the normal: the ball reaches it when its projection is within the radius.
       const double du = low_[0] + i * spacing_ - q[0];
       const double dv = dim_ == 3 ? low_[1] + j * spacing_ - q[1] : 0.0;

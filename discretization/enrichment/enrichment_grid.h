@@ -50,14 +50,18 @@ class EnrichmentGrid {
   /// phi from d+ interpolated between columns (see above); exact outside the lattice.
   PhiValue interpolated(const Vec3& x) const;
 
-  /// Per column: does phi differ from `before` (the same cut with fewer
-  /// pieces) on it or on a neighbouring column? Changes between columns thinner
-  /// than a lattice spacing are caught by that one-column dilation.
-  std::vector<char> changed_columns(const EnrichmentGrid& before) const;
+  /// Built from `before` (the second constructor), so that it knows which of
+  /// its columns' phi differs from before's?
+  bool knows_changes() const { return !changed_.empty(); }
+  /// Does the ball (x, radius) reach a column whose phi differs from `before`'s,
+  /// on it or on a neighbouring column (changes between columns thinner than a
+  /// lattice spacing are caught by that one-column dilation)? False when the
+  /// grid does not know its changes.
+  bool reaches_changed_column(const Vec3& x, double radius) const;
+  /// The flags reaches_changed_column reads, per column (axis 0 fastest); empty unless knows_changes().
+  const std::vector<char>& changed_columns() const { return changed_; }
   /// Same lattice points as `other` (same axes, anchor, spacing; the extent may differ)?
   bool same_lattice(const EnrichmentGrid& other) const;
-  /// Does the ball (x, radius) reach a flagged column?
-  bool reaches(const std::vector<char>& columns, const Vec3& x, double radius) const;
 
   /// The lattice for output: origin, axes (unit, world frame), points per axis
   /// (1 on unused axes), phi per point with axis 0 fastest (computed here).
@@ -91,6 +95,8 @@ class EnrichmentGrid {
   PhiValue phi_in(const Column& c, const Vec3& x) const;
   /// Same phi all along the column through `base` from both?
   bool same(const Column& a, const Column& b, const Vec3& base) const;
+  /// changed_ dilated by one column; changed_box_ the range the flagged columns span.
+  void dilate_changes();
 
   const CutSurface* cut_;
   Index pieces_;
@@ -103,6 +109,11 @@ class EnrichmentGrid {
   Vec3 low_ = Vec3::Zero();     // lattice corner in lattice coordinates
   std::array<Index, 3> count_{1, 1, 1};
   std::vector<Column> columns_; // axis 0 fastest (3D: then axis 1)
+  // Built from `before`: per column, does phi differ from before's (dilated by
+  // one column), found while the columns are built; and the flagged columns'
+  // index ranges {i0, i1, j0, j1} (empty, i1 < i0, when none).
+  std::vector<char> changed_;
+  std::array<Index, 4> changed_box_{0, -1, 0, -1};
 };
 
 }  // namespace kerf

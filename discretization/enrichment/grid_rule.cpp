@@ -61,7 +61,6 @@ void GridRule::grow(const CutSurface& cut, Index pieces, std::span<const Index> 
   if (cut.piece_count() != cut_.piece_count()) cut_ = cut;
   std::unique_ptr<EnrichmentGrid> before = std::move(grid_);
   grid_ = std::make_unique<EnrichmentGrid>(cut_, pieces, spacing_, padding_, *before);
-  grown_columns_ = grid_->changed_columns(*before);
   // Interpolating on a lattice that turned with the cut changes phi near the
   // faces everywhere: then every enriched node is updated.
   lattice_moved_ = lookup_ == GridLookup::interpolated && !grid_->same_lattice(*before);
@@ -74,7 +73,7 @@ void GridRule::grow(const CutSurface& cut, Index pieces, std::span<const Index> 
   for (Index k = 0; k < count; ++k)
     failure.run([&] {
       const Index I = enriched_list_[k];
-      if (lattice_moved_ || grid_->reaches(grown_columns_, nodes_[I], support_[I])) side[k] = node_side(I);
+      if (lattice_moved_ || grid_->reaches_changed_column(nodes_[I], support_[I])) side[k] = node_side(I);
     });
   failure.rethrow_if_failed();
   for (Index k = 0; k < count; ++k) {
@@ -97,7 +96,7 @@ bool GridRule::phi_may_have_changed(const Vec3& x) const {
   // all within sqrt(2) spacings of it; the exact one, the cut at the
   // projection itself, whose change the columns' one-column dilation holds.
   constexpr double reach = 1.5;
-  return lattice_moved_ || grown_columns_.empty() || grid_->reaches(grown_columns_, x, reach * spacing_);
+  return lattice_moved_ || !grid_->knows_changes() || grid_->reaches_changed_column(x, reach * spacing_);
 }
 
 }  // namespace kerf

@@ -62,8 +62,7 @@ class GridRule final : public EnrichmentRule {
   std::vector<char> enriched_;
   std::vector<Index> enriched_list_;
   std::vector<signed char> side_;  // sigma_I
-  std::vector<char> grown_columns_;  // the lattice columns the last grow changed (dilated by one)
-  bool lattice_moved_ = false;       // the last grow turned an interpolated lattice: phi changed everywhere
+  bool lattice_moved_ = false;  // the last grow turned an interpolated lattice: phi changed everywhere
 };
 
 }  // namespace kerf

@@ -184,6 +184,46 @@ TEST(EnrichmentGrid, InterpolatedPhiConvergesToTheExactAwayFromTheFaces) {
   EXPECT_NEAR(grid.interpolated(x).value, grid.exact(x).value, 1e-12);
 }
 
+/// Does the ball (x, radius) reach a flagged column? Every column looked at.
+bool scan_reaches(const EnrichmentGrid& grid, const Vec3& x, double radius) {
+  const std::vector<char>& changed = grid.changed_columns();
+  const auto& axes = grid.lattice_axes();
+  const Index n0 = grid.lattice_count()[0];
+  for (Index c = 0; c < static_cast<Index>(changed.size()); ++c) {
+    if (!changed[c]) continue;
+    const Vec3 d = grid.lattice_origin() + grid.spacing() * ((c % n0) * axes[0] + (c / n0) * axes[1]) - x;
+    if (std::pow(axes[0].dot(d), 2) + std::pow(axes[1].dot(d), 2) < radius * radius) return true;
+  }
+  return false;
+}
+
+TEST(EnrichmentGrid, ReachesAChangedColumnWhereAScanOfEveryColumnDoes) {
+  // The query looks only at the columns in the changed ones' box: it must
+  // answer as a scan of every column does, for balls of every size anywhere.
+  const CutSurface cut = growing_strip();
+  std::mt19937 random(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0), r(0.005, 0.4);
+  for (Index pieces = 2; pieces <= cut.piece_count(); ++pieces) {
+    const EnrichmentGrid before(cut, pieces - 1, 0.02, 0.25);
+    const EnrichmentGrid grown(cut, pieces, 0.02, 0.25, before);
+    ASSERT_TRUE(grown.knows_changes());
+    const std::vector<char>& changed = grown.changed_columns();
+    const auto flagged = std::count(changed.begin(), changed.end(), 1);
+    ASSERT_GT(flagged, 0) << pieces << " pieces";
+    int reached = 0, missed = 0;
+    for (int k = 0; k < 2000; ++k) {
+      const Vec3 x(1.0 * u(random), 0.7 * u(random), 0.3 * u(random));  // past the lattice too
+      const double radius = r(random);
+      const bool expected = scan_reaches(grown, x, radius);
+      ASSERT_EQ(grown.reaches_changed_column(x, radius), expected) << "x " << x.transpose() << ", radius " << radius;
+      (expected ? reached : missed) += 1;
+    }
+    EXPECT_GT(reached, 100);
+    EXPECT_GT(missed, 100);
+  }
+  EXPECT_FALSE(EnrichmentGrid(cut, 2, 0.02, 0.25).knows_changes());
+}
+
 TEST(EnrichmentGrid, RefusesALatticeTooLargeNamingTheKey) {
   const CutSurface cut = growing_strip();
   try {
