@@ -19,25 +19,28 @@ void pair_row(const NodeSet& nodes, const ShapeTable& table, std::span<const dou
   const int dim = nodes.dimension;
   auto near = table.neighbours.of(I);
   const Index s0 = table.neighbours.start[I];
-  double normaliser = 0.0;
+  const Vec3& xI = nodes.positions[I];
+  // One pass: the pair weights w_IJ and, unscaled, sum w X and sum w X X^T
+  // (X = x_J - x_I); the scale c mu V_I / sum w |X|^2 is known at the end.
+  double normaliser = 0.0, sum[3] = {}, moment[3][3] = {};
   for (std::size_t j = 0; j < near.size(); ++j) {
-    double w = quartic_weight_value(nodes.positions[near[j]], nodes.positions[I], nodes.support[I]);
+    const Vec3& xJ = nodes.positions[near[j]];
+    double w = near[j] == I ? 0.0 : quartic_weight_value(xJ, xI, nodes.support[I]);
     if (!table.weight_factor.empty()) w *= table.weight_factor[s0 + j];  // no pairs across a cut
-    t.stiffness[s0 + j] = near[j] == I ? 0.0 : w;
-    normaliser += w * (nodes.positions[near[j]] - nodes.positions[I]).squaredNorm();
+    t.stiffness[s0 + j] = w;
+    const Vec3 X = xJ - xI;
+    normaliser += w * X.squaredNorm();
+    for (int i = 0; i < dim; ++i) {
+      sum[i] += w * X[i];
+      for (int l = 0; l < dim; ++l) moment[i][l] += w * X[i] * X[l];
+    }
   }
-  std::fill_n(t.lever_sum.begin() + 3 * I, 3, 0.0);
-  std::fill_n(t.lever_moment.begin() + 9 * I, 9, 0.0);
   // A node a cut left alone on its side has no pairs (and no normaliser).
   const double scale = normaliser > 0.0 ? c * mu * volume[I] / normaliser : 0.0;
-  for (std::size_t j = 0; j < near.size(); ++j) {
-    const Index s = s0 + static_cast<Index>(j);
-    const double k = t.stiffness[s] *= scale;
-    const Vec3 X = nodes.positions[near[j]] - nodes.positions[I];
-    for (int i = 0; i < dim; ++i) {
-      t.lever_sum[3 * I + i] += k * X[i];
-      for (int l = 0; l < dim; ++l) t.lever_moment[9 * I + 3 * i + l] += k * X[i] * X[l];
-    }
+  for (std::size_t j = 0; j < near.size(); ++j) t.stiffness[s0 + j] *= scale;
+  for (int i = 0; i < 3; ++i) {
+    t.lever_sum[3 * I + i] = scale * sum[i];
+    for (int l = 0; l < 3; ++l) t.lever_moment[9 * I + 3 * i + l] = scale * moment[i][l];
   }
 }
 
@@ -215,7 +218,7 @@ CutUpdate NodalBody::update_for_cuts(double t) {
     std::sort(rows.begin(), rows.end());
     rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
     const Index count = static_cast<Index>(rows.size());
-#pragma omp parallel for schedule(dynamic, 64)
+#pragma omp parallel for schedule(dynamic, 16)
     for (Index r = 0; r < count; ++r)
       pair_row(domain_.nodes(), domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, rows[r], pairs_);
   }
