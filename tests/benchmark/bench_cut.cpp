@@ -181,9 +181,9 @@ BENCHMARK(BM_CutUpdate)
 BENCHMARK(BM_CutUpdateFloor)->Arg(436)->Unit(benchmark::kMillisecond);
 
 const bool paired = (bench::pair_with_floor("BM_CutUpdate/1/5", "BM_CutUpdateFloor/436",
-                                            "bare linear MLS rows (fixed 4x4) for the rows an update recomputes"),
+                                            "the linear MLS rows alone (mls_linear.h) for the rows an update recomputes"),
                      bench::pair_with_floor("BM_CutUpdate/0/5", "BM_CutUpdateFloor/436",
-                                            "bare linear MLS rows (fixed 4x4) for the rows an update recomputes"),
+                                            "the linear MLS rows alone (mls_linear.h) for the rows an update recomputes"),
                      true);
 
 }  // namespace

@@ -1,10 +1,11 @@
 #pragma once
 // The floor under a cut update: the least work a new piece costs is
 // recomputing the MLS shape functions (values and gradients, linear basis) of
-// the rows whose weights it changed, written bare: fixed 4 x 4 moment matrix
-// and its derivatives from the neighbours' quartic weights times their cut
-// factors (read from the table, not looked up), one inverse, rows in parallel.
-// No Enrichment Grid, no search for the rows, no stabilisation pairs.
+// the rows whose weights it changed, by kerf's own linear row (mls_linear.h,
+// the kernel every update calls; BM_MlsRowLinear times it alone) from the
+// neighbours' quartic weights times their cut factors (read from the table,
+// not looked up), rows in parallel. No Enrichment Grid, no search for the
+// rows, no stabilisation pairs, no table bookkeeping.
 #include <span>
 #include <vector>
 
