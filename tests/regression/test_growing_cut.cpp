@@ -276,6 +276,9 @@ TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCut) {
   }
 }
 
+/// |a - b| / |b| over a whole vector.
+double relative_difference(const Vector& a, const Vector& b) { return (a - b).norm() / b.norm(); }
+
 /// A 3 cm block (3 mm spacing) on a clamped base under gravity and a blade
 /// sweeping through it along x: a vertical strip, one triangle a millisecond
 /// (all present at t = 0 when `whole`).
@@ -304,12 +307,19 @@ output: {vtk: false}
 
 // In 3D the Enrichment Grid grows column by column from the one before and a
 // growth recomputes only the rows whose factors changed: the table must still
-// end where building the whole cut at once ends.
+// end where building the whole cut at once ends, and so must the internal
+// force at a random displacement (the stabilisation pairs read the factors).
 TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCutIn3D) {
   for (const char* lookup : {"exact", "interpolated"}) {
     RunReport report;
-    auto body = make_body(blade_block_3d(lookup, false), report);
-    auto reference = make_body(blade_block_3d(lookup, true), report);
+    const Scene growing = blade_block_3d(lookup, false);
+    Scene whole = blade_block_3d(lookup, true);
+    // `auto` splits the cells of a cut present from the start and keeps a
+    // growing cut's whole: the reference must integrate as the growing body does.
+    ASSERT_EQ(cut_cells_of(growing), CutCells::whole);
+    whole.discretization.meshless.cut_cells = CutCells::whole;
+    auto body = make_body(growing, report);
+    auto reference = make_body(whole, report);
     Index recomputed = 0, touched = 0;
     for (int step = 1; step <= 14; ++step) {
       const CutUpdate update = dynamic_cast<NodalBody&>(*body).update_for_cuts(step * 1e-3);
@@ -326,6 +336,12 @@ TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCutIn3D) {
     EXPECT_LT(worst, 1e-12) << lookup;
     EXPECT_GT(recomputed, 0) << lookup;
     EXPECT_GT(touched, 0) << lookup;
+    ASSERT_EQ(growing.discretization.meshless.stabilization, NodalStabilization::hourglass);
+    const Vector u = 1e-4 * Vector::Random(body->dof_count());
+    Vector f, f_whole;
+    body->internal_force(u, f);
+    reference->internal_force(u, f_whole);
+    EXPECT_LT(relative_difference(f, f_whole), 1e-12) << lookup;
   }
 }
 
@@ -351,9 +367,6 @@ double table_difference(const ShapeTable& a, const ShapeTable& b, double h) {
   for (std::size_t k = 0; k < a.gradient.size(); ++k) worst = std::max(worst, h * std::abs(a.gradient[k] - b.gradient[k]));
   return worst;
 }
-
-/// |a - b| / |b| over a whole vector.
-double relative_difference(const Vector& a, const Vector& b) { return (a - b).norm() / b.norm(); }
 
 // EFG grows a cut the same way: the Gauss points', the boundary points' and
 // the nodes' rows the new pieces touch are recomputed, the loads integrated
@@ -421,6 +434,7 @@ TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCutOnTheOrgan) {
       growing.cuts[0].grid_lookup = lookup;
       Scene whole = growing;
       for (double& t : whole.cuts[0].times) t = 0.0;
+      whole.discretization.meshless.cut_cells = cut_cells_of(growing);  // integrated as the growing body is
       RunReport report;
       auto body = make_body(growing, report);
       auto reference = make_body(whole, report);
@@ -439,6 +453,12 @@ TEST(GrowingCut, IncrementalShapeFunctionsEqualThoseOfTheWholeCutOnTheOrgan) {
         const auto& a = dynamic_cast<const NodalBody&>(*body);
         const auto& b = dynamic_cast<const NodalBody&>(*reference);
         EXPECT_LT(table_difference(a.domain().at_nodes(), b.domain().at_nodes(), h), 1e-12) << name;
+        // And the force, stabilisation pairs included, at a random displacement.
+        const Vector u = 1e-4 * Vector::Random(body->dof_count());
+        Vector f, f_whole;
+        body->internal_force(u, f);
+        reference->internal_force(u, f_whole);
+        EXPECT_LT(relative_difference(f, f_whole), 1e-12) << name;
       }
     }
 }
