@@ -205,7 +205,8 @@ std::string MeshlessDomain::mls_remedy() const {
 }
 
 std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<Index>* rows,
-                                                          std::vector<Index>* volumes) {
+                                                          std::vector<Index>* volumes,
+                                                          const std::function<void(Index)>& after_row) {
   if (!enrichment_) return {};
   std::vector<Index> changed = enrichment_->advance_to(t);
   if (changed.empty()) return changed;
@@ -216,11 +217,13 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
   if (smoothing_) {
     smoothing_->set_cuts(*enrichment_, nodes_);
     smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());
+    if (after_row)
+      for (Index p : touched) after_row(p);
   } else {
     // Only the rows whose factors changed: phi moved at their point.
     touched = refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions,
                                  rows_the_growth_may_change(at_nodes_, nodes_.positions, touched), *enrichment_,
-                                 "the node", error_context_, mls_remedy());
+                                 "the node", error_context_, mls_remedy(), nullptr, after_row);
   }
   if (rows) *rows = std::move(touched);
   if (growing_) {  // the boundary terms wait for update_boundary_terms (costly: only VCI needs them each growth)

@@ -82,9 +82,12 @@ class MeshlessDomain {
   /// rows of at_nodes() they touch whose factors changed (with smoothed
   /// gradients, every row they touch); `rows`, when given, receives those
   /// rows; `volumes` the nodes whose volume (and second moments) changed with
-  /// the cells the new pieces cross (visible_dual_cells.h).
+  /// the cells the new pieces cross (visible_dual_cells.h). `after_row`,
+  /// when given, is called with each of those rows once it is recomputed
+  /// (refresh_shape_rows: on the threads that recompute them).
   std::vector<Index> update_shapes_for_cuts(double t, std::vector<Index>* rows = nullptr,
-                                            std::vector<Index>* volumes = nullptr);
+                                            std::vector<Index>* volumes = nullptr,
+                                            const std::function<void(Index)>& after_row = {});
   /// Nodal integration at a cut by the cells' parts (cut_cell_integration.h);
   /// empty `position` without such cells.
   using CutCellPoints = CutCellIntegration::Points;

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <tuple>
 
 #include "core/check.h"
@@ -202,7 +203,12 @@ CutUpdate NodalBody::update_for_cuts(double t) {
   // on each); the neighbour lists, hence each rank's touched rows, stay.
   CutUpdate update;
   std::vector<Index> rows, resized;
-  const std::vector<Index> changed = domain_.update_shapes_for_cuts(t, &rows, &resized);
+  // A recomputed row's stabilisation pairs join its pass (they read its cut factors).
+  const std::function<void(Index)> pairs_of = [&](Index I) {
+    pair_row(domain_.nodes(), domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, I, pairs_);
+  };
+  const std::vector<Index> changed =
+      domain_.update_shapes_for_cuts(t, &rows, &resized, stabilized_ ? pairs_of : std::function<void(Index)>{});
   if (changed.empty()) return update;
   update.nodes = static_cast<Index>(changed.size());
   update.changed_nodes = changed;
@@ -212,15 +218,13 @@ CutUpdate NodalBody::update_for_cuts(double t) {
     const std::vector<Index> reweighed = reintegrate_cut_cells();
     resized.insert(resized.end(), reweighed.begin(), reweighed.end());
   }
-  if (stabilized_) {
-    // The pairs of a node whose volume changed scale with it: their rows too.
-    rows.insert(rows.end(), resized.begin(), resized.end());
-    std::sort(rows.begin(), rows.end());
-    rows.erase(std::unique(rows.begin(), rows.end()), rows.end());
-    const Index count = static_cast<Index>(rows.size());
+  if (stabilized_ && !resized.empty()) {
+    // The pairs of a node whose volume changed scale with it: its row again, with the volume now.
+    std::sort(resized.begin(), resized.end());
+    resized.erase(std::unique(resized.begin(), resized.end()), resized.end());
+    const Index count = static_cast<Index>(resized.size());
 #pragma omp parallel for schedule(dynamic, 16)
-    for (Index r = 0; r < count; ++r)
-      pair_row(domain_.nodes(), domain_.at_nodes(), point_volume_, default_stabilization, law_.lame().mu, rows[r], pairs_);
+    for (Index r = 0; r < count; ++r) pairs_of(resized[r]);
   }
   if (natural_) {
     natural_->refresh(domain_.nodes(), domain_.basis(), domain_.at_nodes(), rows,

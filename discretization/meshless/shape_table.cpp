@@ -70,13 +70,14 @@ template <class Rows>
 void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points, Index count,
                Rows rows, const EnrichmentRule* enrichment, bool only_if_changed, std::vector<char>& filled,
                const std::string& what, const std::string& context, const std::string& remedy,
-               Index* singular = nullptr) {
+               Index* singular = nullptr, const std::function<void(Index)>& after_row = {}) {
   Index failed = -1;
   filled.assign(count, 0);
   for_each_with_scratch<PointShapes>(count, [&](Index i, PointShapes& scratch) {
     const Index p = rows(i);
     const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
     filled[i] = result != Filled::unchanged;
+    if (result == Filled::row && after_row) after_row(p);
     if (result != Filled::singular) return;
     if (singular) {  // no shape functions there: the row adds nothing
       const std::size_t s0 = t.neighbours.start[p], s1 = t.neighbours.start[p + 1];
@@ -201,7 +202,8 @@ ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis
 std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis,
                                       std::span<const Vec3> points, std::span<const Index> rows,
                                       const EnrichmentRule& enrichment, const std::string& what,
-                                      const std::string& context, const std::string& remedy, Index* singular) {
+                                      const std::string& context, const std::string& remedy, Index* singular,
+                                      const std::function<void(Index)>& after_row) {
   const std::size_t slots = table.neighbours.index.size();
   if (table.weight_factor.empty()) {  // built before any cut: every factor was 1
     table.weight_factor.assign(slots, 1.0);
@@ -212,7 +214,7 @@ std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, M
              "internal: a table refreshed for a growing cut must keep its factors' gradients (keep_factor_gradients)");
   std::vector<char> filled;
   fill_rows(table, nodes, basis, points, static_cast<Index>(rows.size()), [&](Index i) { return rows[i]; },
-            &enrichment, true, filled, what, context, remedy, singular);
+            &enrichment, true, filled, what, context, remedy, singular, after_row);
   std::vector<Index> recomputed;
   for (std::size_t i = 0; i < rows.size(); ++i)
     if (filled[i]) recomputed.push_back(rows[i]);

@@ -4,6 +4,7 @@
 // point p's neighbours are neighbours.of(p), their values start at
 // neighbours.start[p] and their gradients at dim * neighbours.start[p].
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -90,10 +91,13 @@ ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis
 /// same points, same neighbour lists) with the cuts' current enrichment: the
 /// cut grew. A row whose factors g_I (values and gradients) are those it was
 /// built with is left as it is. Returns the rows recomputed, in the order
-/// given. Throws like shape_table (or counts, with `singular`).
+/// given. Throws like shape_table (or counts, with `singular`). `after_row`,
+/// when given, is called with each row recomputed, on the thread that
+/// recomputed it, as soon as it is (work that reads the row joins its pass).
 std::vector<Index> refresh_shape_rows(ShapeTable& table, const NodeSet& nodes, MlsBasis basis, std::span<const Vec3> points,
                         std::span<const Index> rows, const EnrichmentRule& enrichment, const std::string& what,
-                        const std::string& context, const std::string& remedy, Index* singular = nullptr);
+                        const std::string& context, const std::string& remedy, Index* singular = nullptr,
+                        const std::function<void(Index)>& after_row = {});
 
 /// Appends the rows of `more` (a table of the same nodes, built the same way) after those of `table`.
 void append_rows(ShapeTable& table, const ShapeTable& more);
