@@ -180,11 +180,9 @@ BENCHMARK(BM_CutUpdate)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_CutUpdateFloor)->Arg(436)->Unit(benchmark::kMillisecond);
 
-const bool paired = (bench::pair_with_floor("BM_CutUpdate/1/5", "BM_CutUpdateFloor/436",
-                                            "the linear MLS rows alone (mls_linear.h) for the rows an update recomputes"),
-                     bench::pair_with_floor("BM_CutUpdate/0/5", "BM_CutUpdateFloor/436",
-                                            "the linear MLS rows alone (mls_linear.h) for the rows an update recomputes"),
-                     true);
+constexpr const char* rows_alone = "the linear MLS rows alone (mls_linear.h) for the rows an update recomputes";
+const bool paired = (bench::pair_with_floor("BM_CutUpdate/1/5", "BM_CutUpdateFloor/436", rows_alone),
+                     bench::pair_with_floor("BM_CutUpdate/0/5", "BM_CutUpdateFloor/436", rows_alone), true);
 
 }  // namespace
 }  // namespace kerf
