@@ -25,9 +25,8 @@ EnrichmentGrid::EnrichmentGrid(const CutSurface& cut, Index pieces, double spaci
       dim_(cut.dimension),
       anchor_(cut.vertices.front()) {
   size_lattice(padding);
-  const bool grows =
-      before && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_ && same_lattice(*before);
   const bool same_points = before && same_lattice(*before);
+  const bool grows = same_points && dim_ == 3 && before->cut_ == cut_ && before->pieces_ < pieces_;
   const CutRegionIndex added(cut, grows ? before->pieces_ : pieces_, pieces_, frame_);  // the new pieces
   if (before) changed_.assign(columns_.size(), 0);
   ParallelFailure failure;
