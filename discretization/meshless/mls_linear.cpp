@@ -42,14 +42,13 @@ __attribute__((always_inline)) inline bool rotate(double (&a)[4][4], int p, int 
 template <int M>
 void jacobi_eigenvalues(double (&a)[4][4], double (&lambda)[4]) {
   constexpr int pairs = M * (M - 1) / 2;
-  constexpr int order4[6][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {0, 3}, {1, 2}};
-  constexpr int order3[3][2] = {{0, 1}, {0, 2}, {1, 2}};
+  constexpr int parallel[6][2] = {{0, 1}, {2, 3}, {0, 2}, {1, 3}, {0, 3}, {1, 2}};
+  constexpr int cyclic[3][2] = {{0, 1}, {0, 2}, {1, 2}};  // 2 x 2: its first pair
   for (int sweep = 0; sweep < 40; ++sweep) {
     bool rotated = false;
     for (int k = 0; k < pairs; ++k) {
-      const int p = M == 4 ? order4[k][0] : M == 3 ? order3[k][0] : 0;
-      const int q = M == 4 ? order4[k][1] : M == 3 ? order3[k][1] : 1;
-      rotated |= rotate<M>(a, p, q);
+      if constexpr (M == 4) rotated |= rotate<M>(a, parallel[k][0], parallel[k][1]);
+      else rotated |= rotate<M>(a, cyclic[k][0], cyclic[k][1]);
     }
     if (!rotated) break;
   }
