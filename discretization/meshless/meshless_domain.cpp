@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
 #include "discretization/enrichment/enrichment_grid.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/meshless/integration_constraint.h"
@@ -217,8 +218,13 @@ std::vector<Index> MeshlessDomain::update_shapes_for_cuts(double t, std::vector<
   if (smoothing_) {
     smoothing_->set_cuts(*enrichment_, nodes_);
     smoothing_->refresh(at_nodes_, touched, nodes_, basis_, *enrichment_, error_context_, mls_remedy());
-    if (after_row)
-      for (Index p : touched) after_row(p);
+    if (after_row) {  // on the region's threads, as refresh_shape_rows calls it
+      const Index count = static_cast<Index>(touched.size());
+      ParallelFailure failure;
+#pragma omp parallel for schedule(dynamic, 16)
+      for (Index i = 0; i < count; ++i) failure.run([&] { after_row(touched[i]); });
+      failure.rethrow_if_failed();
+    }
   } else {
     // Only the rows whose factors changed: phi moved at their point.
     touched = refresh_shape_rows(at_nodes_, nodes_, basis_, nodes_.positions,
