@@ -77,18 +77,19 @@ void fill_rows(ShapeTable& t, const NodeSet& nodes, MlsBasis basis, std::span<co
     const Index p = rows(i);
     const Filled result = fill_row(t, nodes, basis, points[p], p, enrichment, only_if_changed, scratch);
     filled[i] = result != Filled::unchanged;
-    if (result == Filled::row && after_row) after_row(p);
-    if (result != Filled::singular) return;
-    if (singular) {  // no shape functions there: the row adds nothing
+    if (result == Filled::singular && !singular) {
+#pragma omp critical
+      if (failed < 0 || p < failed) failed = p;
+      return;
+    }
+    if (result == Filled::singular) {  // no shape functions there: the row adds nothing
       const std::size_t s0 = t.neighbours.start[p], s1 = t.neighbours.start[p + 1];
       std::fill(t.value.begin() + s0, t.value.begin() + s1, 0.0);
       std::fill(t.gradient.begin() + t.dimension * s0, t.gradient.begin() + t.dimension * s1, 0.0);
 #pragma omp atomic
       ++*singular;
-      return;
     }
-#pragma omp critical
-    if (failed < 0 || p < failed) failed = p;
+    if (filled[i] && after_row) after_row(p);  // every row recomputed, zeroed ones too
   });
   if (failed < 0) return;
   const Index covering = static_cast<Index>(t.neighbours.of(failed).size());
