@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "discretization/body_capabilities.h"
+#include "discretization/csr_block_sink.h"
 
 namespace kerf {
 
@@ -20,10 +21,7 @@ SparseMatrix build_pattern(int dofs_per_node, Index n,
                            const std::function<void(const CouplingVisitor&)>& visit_couplings,
                            std::span<const Index> kept_nodes = {});
 
-/// A sink adding scale * block into `matrix` (whose pattern holds the block's
-/// nonzero entries; entries outside it must be zero and are skipped);
-/// thread-safe for blocks that share no row. With `dofs_per_node` 2 or 3, a
-/// block of whole nodes is written a node pair at a time (one search each).
+/// The sink of csr_block_sink.h on the matrix's arrays.
 BlockSink add_into(SparseMatrix& matrix, double scale = 1.0, int dofs_per_node = 1);
 
 /// The matrix's arrays as a body writes into them (MatrixAssembly).
