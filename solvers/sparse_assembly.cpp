@@ -5,6 +5,7 @@
 
 #include "core/check.h"
 #include "core/parallel_failure.h"
+#include "geometry/neighbor_search.h"
 
 namespace kerf {
 
@@ -15,44 +16,31 @@ SparseMatrix build_pattern(const DiscreteBody& body) {
 
 namespace {
 
-/// Each visited block's nodes, in one flat list (a block holds whole nodes).
-struct BlockNodes {
-  std::vector<Index> start{0};
-  std::vector<Index> nodes;
-};
-
-BlockNodes gather_blocks(int dpn, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
-  BlockNodes blocks;
+/// Each visited block's nodes, ascending and distinct, in one flat list (a
+/// block holds whole nodes).
+NeighborLists gather_blocks(int dpn, const std::function<void(const CouplingVisitor&)>& visit_couplings) {
+  NeighborLists blocks;
   visit_couplings([&](std::span<const Index> dofs) {
     KERF_DCHECK(dofs.size() % dpn == 0);
-    for (std::size_t i = 0; i < dofs.size(); i += dpn) blocks.nodes.push_back(dofs[i] / dpn);
-    blocks.start.push_back(static_cast<Index>(blocks.nodes.size()));
+    const auto first = blocks.index.end() - blocks.index.begin();
+    for (std::size_t i = 0; i < dofs.size(); i += dpn) blocks.index.push_back(dofs[i] / dpn);
+    const auto begin = blocks.index.begin() + first;
+    if (!std::is_sorted(begin, blocks.index.end())) std::sort(begin, blocks.index.end());
+    blocks.index.erase(std::unique(begin, blocks.index.end()), blocks.index.end());
+    blocks.start.push_back(static_cast<Index>(blocks.index.size()));
   });
   return blocks;
 }
 
-/// For each node, the blocks holding it (a counting sort of the blocks' nodes).
-std::vector<std::vector<Index>> blocks_of_nodes(const BlockNodes& blocks, Index nodes) {
-  std::vector<std::vector<Index>> of(nodes);
-  const Index count = static_cast<Index>(blocks.start.size()) - 1;
-  for (Index b = 0; b < count; ++b)
-    for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) of[blocks.nodes[k]].push_back(b);
-  return of;
-}
-
-}  // namespace
-
-SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings,
-                           std::span<const Index> kept_nodes) {
-  // Meshless bodies visit each node pair dozens of times (once per shared
-  // point): each node's couplings are found once, by marking the nodes of the
-  // blocks that hold it, rather than by sorting every visit's pairs.
-  const Index nodes = n / dpn;
-  const BlockNodes blocks = gather_blocks(dpn, visit_couplings);
-  const std::vector<std::vector<Index>> holding = blocks_of_nodes(blocks, nodes);
-  std::vector<char> kept(nodes, kept_nodes.empty() ? 1 : 0);
-  for (Index a : kept_nodes) kept[a] = 1;
-  std::vector<std::vector<Index>> adjacent(nodes);
+/// For each node, the nodes after it in the blocks holding it, ascending: the
+/// upper half of the node couplings (each pair is visited from its first node
+/// alone, half the visits of marking every block holding a node).
+std::vector<std::vector<Index>> later_couplings(const NeighborLists& blocks, Index nodes) {
+  const NeighborLists holding = transpose_slots(blocks, nodes);  // per node: the slots holding it
+  std::vector<Index> block_end(blocks.index.size());
+  for (Index b = 0; b < blocks.size(); ++b)
+    std::fill(block_end.begin() + blocks.start[b], block_end.begin() + blocks.start[b + 1], blocks.start[b + 1]);
+  std::vector<std::vector<Index>> later(nodes);
   ParallelFailure failure;  // the lists allocate
 #pragma omp parallel
   {
@@ -61,35 +49,78 @@ SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const Coup
 #pragma omp for schedule(dynamic, 64)
     for (Index a = 0; a < nodes; ++a)
       failure.run([&] {
-        auto& list = adjacent[a];
-        list.push_back(a);  // the diagonal is always present
-        if (!kept[a]) return;
-        marked_by[a] = a;
-        for (Index b : holding[a])
-          for (Index k = blocks.start[b]; k < blocks.start[b + 1]; ++k) {
-            const Index c = blocks.nodes[k];
+        std::vector<Index>& list = later[a];
+        const std::span<const Index> slots = holding.of(a);
+        for (std::size_t h = 0; h < slots.size(); ++h) {
+          const Index slot = slots[h];
+          if (h + 8 < slots.size()) {  // the blocks lie scattered: their misses are the loop's cost
+            __builtin_prefetch(&block_end[slots[h + 8]]);
+            __builtin_prefetch(&blocks.index[slots[h + 8]]);
+          }
+          for (Index k = slot + 1; k < block_end[slot]; ++k) {
+            const Index c = blocks.index[k];
             if (marked_by[c] != a) marked_by[c] = a, list.push_back(c);
           }
+        }
         std::sort(list.begin(), list.end());
       });
   }
   failure.rethrow_if_failed();
-  SparseMatrix m(n, n);
-  Index nonzeros = 0;
-  for (Index a = 0; a < nodes; ++a) nonzeros += static_cast<Index>(adjacent[a].size()) * dpn * dpn;
-  m.resizeNonZeros(nonzeros);
-  Index* outer = m.outerIndexPtr();
-  Index* inner = m.innerIndexPtr();
-  Index at = 0;
+  return later;
+}
+
+/// The whole-node pattern whose rows of `kept` nodes hold the nodes coupled to
+/// them (those before, from the later lists turned round, the node, those after) and
+/// whose other rows hold their diagonal alone.
+SparseMatrix pattern_of(int dpn, Index n, const std::vector<std::vector<Index>>& later, const std::vector<char>& kept) {
+  const Index nodes = static_cast<Index>(later.size());
+  NeighborLists earlier;  // per node: the nodes before it coupled to it, ascending
+  earlier.start.assign(nodes + 1, 0);
   for (Index a = 0; a < nodes; ++a)
-    for (int i = 0; i < dpn; ++i) {
-      outer[dpn * a + i] = at;
-      for (Index c : adjacent[a])
-        for (int k = 0; k < dpn; ++k) inner[at++] = dpn * c + k;
-    }
-  outer[n] = at;
-  std::fill(m.valuePtr(), m.valuePtr() + nonzeros, 0.0);
+    for (Index c : later[a]) ++earlier.start[c + 1];
+  for (Index a = 0; a < nodes; ++a) earlier.start[a + 1] += earlier.start[a];
+  earlier.index.resize(earlier.start[nodes]);
+  std::vector<Index> next(earlier.start.begin(), earlier.start.end() - 1);
+  for (Index a = 0; a < nodes; ++a)
+    for (Index c : later[a]) earlier.index[next[c]++] = a;
+  SparseMatrix m(n, n);
+  Index* outer = m.outerIndexPtr();
+  outer[0] = 0;
+  for (Index a = 0; a < nodes; ++a) {
+    const Index columns = kept[a] ? earlier.of(a).size() + 1 + later[a].size() : 1;
+    for (int i = 0; i < dpn; ++i) outer[dpn * a + i + 1] = outer[dpn * a + i] + columns * dpn;
+  }
+  m.resizeNonZeros(outer[n]);
+  Index* inner = m.innerIndexPtr();
+#pragma omp parallel for schedule(dynamic, 64)
+  for (Index a = 0; a < nodes; ++a) {
+    Index* at = inner + outer[dpn * a];
+    auto put = [&](Index c) {
+      for (int k = 0; k < dpn; ++k) *at++ = dpn * c + k;
+    };
+    if (kept[a]) std::for_each(earlier.of(a).begin(), earlier.of(a).end(), put);
+    put(a);  // the diagonal is always present
+    if (kept[a]) std::for_each(later[a].begin(), later[a].end(), put);
+    const Index* first_row = inner + outer[dpn * a];
+    const Index length = outer[dpn * a + 1] - outer[dpn * a];
+    for (int i = 1; i < dpn; ++i) std::copy(first_row, first_row + length, at + (i - 1) * length);
+  }
+  std::fill(m.valuePtr(), m.valuePtr() + outer[n], 0.0);
   return m;
+}
+
+}  // namespace
+
+SparseMatrix build_pattern(int dpn, Index n, const std::function<void(const CouplingVisitor&)>& visit_couplings,
+                           std::span<const Index> kept_nodes) {
+  // Meshless bodies visit each node pair dozens of times (once per shared
+  // point): each node's couplings are found once, by marking the nodes after
+  // it in the blocks that hold it (those before it are the same lists turned
+  // round), rather than by sorting every visit's pairs.
+  const Index nodes = n / dpn;
+  std::vector<char> kept(nodes, kept_nodes.empty() ? 1 : 0);
+  for (Index a : kept_nodes) kept[a] = 1;
+  return pattern_of(dpn, n, later_couplings(gather_blocks(dpn, visit_couplings), nodes), kept);
 }
 
 CsrView csr_view(SparseMatrix& matrix) {

@@ -68,6 +68,43 @@ TEST(SparseAssembly, PatternOfKeptNodesHoldsTheirRowsWholeAndOnlyTheDiagonalElse
   EXPECT_EQ(part.nonZeros(), 4 * static_cast<Index>(expected.size()));  // 2 x 2 entries a node pair
 }
 
+// build_pattern marks each node's later neighbours and turns them round for
+// the earlier ones: against every pair of every block, for blocks in any
+// order, holding a node twice, of one node, with some nodes kept.
+TEST(SparseAssembly, PatternEqualsThePairsOfEveryBlockForBlocksInAnyOrder) {
+  std::srand(7);
+  const Index nodes = 60;
+  std::vector<std::vector<Index>> blocks;  // of nodes
+  for (int b = 0; b < 200; ++b) {
+    std::vector<Index> block;
+    const Index centre = std::rand() % nodes, size = 1 + std::rand() % 9;
+    for (Index k = 0; k < size; ++k) block.push_back(std::clamp<Index>(centre + std::rand() % 11 - 5, 0, nodes - 1));
+    blocks.push_back(block);  // unsorted, sometimes a node twice
+  }
+  for (const std::vector<Index>& kept : {std::vector<Index>{}, std::vector<Index>{3, 17, 18, 40, 59}}) {
+    const SparseMatrix m = build_pattern(3, 3 * nodes, [&](const CouplingVisitor& visit) {
+      for (const std::vector<Index>& block : blocks) {
+        std::vector<Index> dofs;
+        for (Index n : block)
+          for (int i = 0; i < 3; ++i) dofs.push_back(3 * n + i);
+        visit(dofs);
+      }
+    }, kept);
+    std::set<std::pair<Index, Index>> expected;
+    auto is_kept = [&](Index a) { return kept.empty() || std::count(kept.begin(), kept.end(), a) > 0; };
+    for (Index a = 0; a < nodes; ++a) expected.insert({a, a});
+    for (const std::vector<Index>& block : blocks)
+      for (Index a : block)
+        for (Index b : block)
+          if (is_kept(a)) expected.insert({a, b});
+    EXPECT_EQ(node_structure(m, 3), expected) << kept.size() << " kept";
+    EXPECT_EQ(m.nonZeros(), 9 * static_cast<Index>(expected.size()));
+    for (Index r = 0; r < m.rows(); ++r)  // sorted, distinct columns
+      for (Index k = m.outerIndexPtr()[r] + 1; k < m.outerIndexPtr()[r + 1]; ++k)
+        EXPECT_LT(m.innerIndexPtr()[k - 1], m.innerIndexPtr()[k]) << "row " << r;
+  }
+}
+
 TEST(SparseAssembly, BlocksLandInPlaceWhateverTheOrderOfTheirDofs) {
   for (const std::vector<Index>& dofs : {std::vector<Index>{0, 1, 2, 3, 4, 5}, std::vector<Index>{4, 5, 0, 1, 2, 3},
                                          std::vector<Index>{5, 0, 3, 1, 4, 2}}) {
