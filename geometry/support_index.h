@@ -36,7 +36,11 @@ class SupportIndex {
   std::vector<Group> groups_;
 };
 
-/// For each query point x, the nodes I whose support covers it: |x - x_I| < radius[I].
-NeighborLists covering_supports(const SupportIndex& nodes, std::span<const Vec3> queries);
+/// For each query point x, the nodes I whose support covers it: |x - x_I| <
+/// radius[I], in increasing order; queries in parallel. With `group_size` > 1,
+/// each run of that many consecutive queries (a cell's Gauss points) shares one
+/// search for the nodes reaching a ball around them: the same lists, fewer
+/// searches where the queries lie close together.
+NeighborLists covering_supports(const SupportIndex& nodes, std::span<const Vec3> queries, Index group_size = 1);
 
 }  // namespace kerf

@@ -61,7 +61,7 @@ std::vector<char> cells_of_rank(const MeshlessDomain& domain, const CellQuadratu
   for (Index first = 0; first < cells; first += chunk) {
     const Index last = std::min(cells, first + chunk);
     const NeighborLists near = domain.supports_covering(
-        std::span<const Vec3>(q.position).subspan(first * per_cell, (last - first) * per_cell));
+        std::span<const Vec3>(q.position).subspan(first * per_cell, (last - first) * per_cell), per_cell);
     for (Index c = first; c < last; ++c) {
       std::fill(votes.begin(), votes.end(), 0);
       bool reaches_own = false;
@@ -94,7 +94,7 @@ PointIntegration rank_points(const MeshlessDomain& domain, const MeshlessOptions
       if (mine[p / q.per_cell]) q.position[kept] = q.position[p], q.weight[kept++] = q.weight[p];
     q.position.resize(kept), q.weight.resize(kept);
   }
-  ShapeTable shapes = domain.shapes_at(q.position, "the quadrature point");
+  ShapeTable shapes = domain.shapes_at(q.position, "the quadrature point", q.per_cell);
   return PointIntegration(std::move(shapes), std::move(q.position), std::move(q.weight), domain.nodes().positions,
                           q.per_cell);
 }

@@ -175,12 +175,13 @@ const Mesh& MeshlessDomain::background() const {
   return *background_;
 }
 
-ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what) const {
-  return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment(), growing_);
+ShapeTable MeshlessDomain::shapes_at(std::span<const Vec3> points, const std::string& what, Index group_size) const {
+  return shape_table(nodes_, *index_, basis_, points, what, error_context_, mls_remedy(), enrichment(), growing_,
+                     nullptr, group_size);
 }
 
-NeighborLists MeshlessDomain::supports_covering(std::span<const Vec3> points) const {
-  return covering_supports(*index_, points);
+NeighborLists MeshlessDomain::supports_covering(std::span<const Vec3> points, Index group_size) const {
+  return covering_supports(*index_, points, group_size);
 }
 
 std::vector<Index> MeshlessDomain::refresh_rows(ShapeTable& table, std::span<const Vec3> points,

@@ -110,10 +110,12 @@ class MeshlessDomain {
   /// MLS shape functions of the nodes at `points`; a point whose moment matrix
   /// is singular is an error naming it (`what`) and the scene keys to change.
   /// When a cut grows, the table keeps its factors' gradients for refresh_rows.
-  ShapeTable shapes_at(std::span<const Vec3> points, const std::string& what) const;
+  /// `group_size`: the points come in runs of that many that lie close
+  /// together (a cell's Gauss points), whose neighbour search they share.
+  ShapeTable shapes_at(std::span<const Vec3> points, const std::string& what, Index group_size = 1) const;
   /// The neighbour lists shapes_at would give `points` (the nodes whose
   /// supports cover each), without the shape functions.
-  NeighborLists supports_covering(std::span<const Vec3> points) const;
+  NeighborLists supports_covering(std::span<const Vec3> points, Index group_size = 1) const;
   /// Recomputes rows `rows` of a table shapes_at built at `points` with the cuts
   /// as they stand (update_shapes_for_cuts has brought them to t); returns the
   /// rows whose factors had changed, hence recomputed.

@@ -182,11 +182,12 @@ bool PointShapes::keep_spanned_directions(int dim, MlsBasis basis, const Vec3& p
 
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
-                       const EnrichmentRule* enrichment, bool keep_factor_gradients, Index* singular) {
+                       const EnrichmentRule* enrichment, bool keep_factor_gradients, Index* singular,
+                       Index group_size) {
   const int dim = nodes.dimension;
   ShapeTable t;
   t.dimension = dim;
-  t.neighbours = covering_supports(index, points);
+  t.neighbours = covering_supports(index, points, group_size);
   const Index P = t.point_count();
   t.value.assign(t.neighbours.index.size(), 0.0);
   t.gradient.assign(dim * t.neighbours.index.size(), 0.0);

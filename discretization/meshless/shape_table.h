@@ -82,10 +82,11 @@ std::string singular_moment_message(int dim, MlsBasis basis, const Vec3& x, Inde
 /// (refresh_shape_rows needs them; 24 bytes a slot). With `singular`, a
 /// point whose matrix cannot be inverted gets a row of zeros, counted there,
 /// instead of the refusal (for figures that must not stop a run).
+/// `group_size`: covering_supports' (runs of points that lie close together).
 ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis basis, std::span<const Vec3> points,
                        const std::string& what, const std::string& context, const std::string& remedy,
                        const EnrichmentRule* enrichment = nullptr, bool keep_factor_gradients = false,
-                       Index* singular = nullptr);
+                       Index* singular = nullptr, Index group_size = 1);
 
 /// Recomputes rows `rows` of a table built by shape_table at `points` (the
 /// same points, same neighbour lists) with the cuts' current enrichment: the

@@ -3,6 +3,8 @@
 // spacing; MLS stays invertible and exact across a refinement transition.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
 #include "geometry/support_index.h"
@@ -109,6 +111,40 @@ TEST(NodeSet, MeshNodeSpacingIsTheEquivalentLatticeSpacing) {
       EXPECT_DOUBLE_EQ(s.support[i], 2.2 * s.spacing[i]);
     }
     EXPECT_NEAR(spacing_power / volume, 1.0, 0.05) << dim << "D";
+  }
+}
+
+// covering_supports finds a group of close queries' candidates once, around
+// the group: each query's list must be the one its own search gives, on
+// supports of three octaves, for groups as tight as a cell's Gauss points and
+// as loose as a row of points across the box, and for a last group cut short.
+TEST(SupportIndex, GroupsOfQueriesShareASearchAndGetTheirOwnLists) {
+  std::srand(3);
+  std::vector<Vec3> positions;
+  std::vector<double> radius;
+  for (int i = 0; i < 1500; ++i) {
+    positions.emplace_back(Vec3::Random() * 0.02);
+    radius.push_back(0.003 * std::pow(2.0, (std::rand() % 300) / 100.0));
+  }
+  const SupportIndex index(positions, radius);
+  std::vector<Vec3> queries;
+  for (int g = 0; g < 50; ++g) {
+    const Vec3 centre = Vec3::Random() * 0.025;  // some past the nodes' box
+    for (int k = 0; k < 14; ++k) queries.push_back(centre + Vec3::Random() * (g % 5 == 0 ? 0.02 : 0.001));
+  }
+  queries.resize(queries.size() - 5);
+  std::vector<Index> own;
+  for (Index group : {1, 4, 14, 100}) {
+    const NeighborLists lists = covering_supports(index, queries, group);
+    ASSERT_EQ(lists.size(), static_cast<Index>(queries.size()));
+    Index reached = 0;
+    for (Index q = 0; q < lists.size(); ++q) {
+      index.reaching(queries[q], 0.0, own);
+      const auto list = lists.of(q);
+      EXPECT_EQ(std::vector<Index>(list.begin(), list.end()), own) << "group " << group << " query " << q;
+      reached += static_cast<Index>(own.size());
+    }
+    EXPECT_GT(reached, 10 * lists.size()) << group;
   }
 }
 
