@@ -189,8 +189,10 @@ ShapeTable shape_table(const NodeSet& nodes, const SupportIndex& index, MlsBasis
   t.dimension = dim;
   t.neighbours = covering_supports(index, points, group_size);
   const Index P = t.point_count();
-  t.value.assign(t.neighbours.index.size(), 0.0);
-  t.gradient.assign(dim * t.neighbours.index.size(), 0.0);
+  // Not zeroed: fill_rows writes every row on the thread that computes it (zeroes a singular one it counts,
+  // throws at one it does not).
+  t.value.resize(t.neighbours.index.size());
+  t.gradient.resize(dim * t.neighbours.index.size());
   t.condition.assign(P, 0.0);
   if (enrichment) t.weight_factor.assign(t.neighbours.index.size(), 1.0);
   if (enrichment) t.basis_directions.assign(P, -1);

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/uninitialized_vector.h"
 #include "discretization/enrichment/enrichment_rule.h"
 #include "discretization/meshless/mls_linear.h"
 #include "discretization/meshless/mls_shape.h"
@@ -20,8 +21,8 @@ namespace kerf {
 struct ShapeTable {
   int dimension = 3;
   NeighborLists neighbours;       // per point: the nodes whose support covers it
-  std::vector<double> value;      // per (point, neighbour)
-  std::vector<double> gradient;   // per (point, neighbour), dimension entries (1/m)
+  UninitializedVector<double> value;     // per (point, neighbour)
+  UninitializedVector<double> gradient;  // per (point, neighbour), dimension entries (1/m)
   std::vector<double> condition;  // per point: condition number of the scaled moment matrix
   std::vector<double> weight_factor;  // per (point, neighbour): a cut's g_I (empty without cuts)
   std::vector<Vec3> weight_factor_gradient;  // per (point, neighbour): grad g_I (1/m; tables refreshed for cuts)

@@ -4,9 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "discretization/meshless/mls_shape.h"
 #include "discretization/meshless/node_set.h"
+#include "discretization/meshless/shape_table.h"
 #include "geometry/support_index.h"
 #include "support/test_support.h"
 
@@ -145,6 +147,46 @@ TEST(SupportIndex, GroupsOfQueriesShareASearchAndGetTheirOwnLists) {
       reached += static_cast<Index>(own.size());
     }
     EXPECT_GT(reached, 10 * lists.size()) << group;
+  }
+}
+
+// A table's values and gradients are not zeroed before its rows are filled:
+// every entry must be written, a singular row counted as zeros. The heap is
+// first filled with NaN where a table of this size lands (a freed block of
+// the same size), so an entry left unwritten shows.
+TEST(ShapeTable, EveryEntryIsWrittenAndASingularRowCountedIsZero) {
+  const NodeSet nodes = lattice_nodes(2, Box{Vec3(0, 0, 0), Vec3(0.02, 0.01, 0)}, 0.002, {}, 2.2);
+  const SupportIndex index(nodes.positions, nodes.support);
+  std::vector<Vec3> points;
+  for (double x = 0.0005; x < 0.02; x += 0.0017) points.emplace_back(x, 0.0043, 0.0);
+  points.emplace_back(0.02 + 0.0041, 0.005, 0.0);  // beyond the plate's edge: one column of nodes, collinear
+  std::size_t slots = 0;
+  for (const Vec3& x : points) {
+    std::vector<Index> near;
+    index.reaching(x, 0.0, near);
+    slots += near.size();
+  }
+  for (int round = 0; round < 3; ++round) {
+    std::vector<double>(3 * slots, std::numeric_limits<double>::quiet_NaN());  // freed at once
+    std::vector<double>(slots, std::numeric_limits<double>::quiet_NaN());
+    Index singular = 0;
+    const ShapeTable t = shape_table(nodes, index, MlsBasis::linear, points, "the point", "", "", nullptr, false,
+                                     &singular, 4);
+    ASSERT_EQ(singular, 1);
+    for (Index p = 0; p < t.point_count(); ++p) {
+      double sum = 0.0;
+      Vec3 gradient_sum = Vec3::Zero();
+      for (Index k = 0; k < static_cast<Index>(t.neighbours.of(p).size()); ++k) {
+        sum += t.values_of(p)[k];
+        gradient_sum += Vec3(t.gradients_of(p)[2 * k], t.gradients_of(p)[2 * k + 1], 0.0);
+      }
+      const bool last = p + 1 == t.point_count();  // the singular one: zeros
+      EXPECT_NEAR(sum, last ? 0.0 : 1.0, 1e-12) << "point " << p;
+      EXPECT_LT(gradient_sum.norm(), 1e-8) << "point " << p;
+      if (last) {
+        for (Index k = 0; k < static_cast<Index>(t.neighbours.of(p).size()); ++k) EXPECT_EQ(t.values_of(p)[k], 0.0);
+      }
+    }
   }
 }
 
