@@ -21,16 +21,32 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> position
   KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count() && positions_.size() == weights_.size(),
              "integration weights and positions: ", weights_.size(), " and ", positions_.size(), " for ",
              shapes_.point_count(), " points");
+  // The transposed lists and each entry's point in one pass (a counting sort).
   const auto& nb = shapes_.neighbours;
-  const Index slots = static_cast<Index>(nb.index.size());
-  slot_point_.resize(slots);
+  users_.start.assign(node_count + 1, 0);
+  for (Index K : nb.index) ++users_.start[K + 1];
+  for (Index K = 0; K < node_count; ++K) users_.start[K + 1] += users_.start[K];
+  users_.index.resize(nb.index.size());
+  user_point_.resize(nb.index.size());
+  std::vector<Index> next(users_.start.begin(), users_.start.end() - 1);
   for (Index p = 0; p < nb.size(); ++p)
-    for (Index s = nb.start[p]; s < nb.start[p + 1]; ++s) slot_point_[s] = p;
-  users_ = transpose_slots(nb, node_count);
+    for (Index s = nb.start[p]; s < nb.start[p + 1]; ++s) {
+      KERF_CHECK(s == nb.start[p] || nb.index[s - 1] < nb.index[s], "internal: the neighbours of point ", p,
+                 " are not in increasing order");  // add_stiffness_rows reads the nodes after one in its list
+      const Index at = next[nb.index[s]]++;
+      users_.index[at] = s;
+      user_point_[at] = p;
+    }
 }
 
 std::vector<Index> PointIntegration::points_holding(std::span<const Index> nodes) const {
-  return lists_holding(users_, slot_point_, shapes_.point_count(), nodes);
+  std::vector<char> holds(point_count(), 0);
+  for (Index K : nodes)
+    for (Index k = users_.start[K]; k < users_.start[K + 1]; ++k) holds[user_point_[k]] = 1;
+  std::vector<Index> points;
+  for (Index p = 0; p < point_count(); ++p)
+    if (holds[p]) points.push_back(p);
+  return points;
 }
 
 void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
@@ -41,9 +57,9 @@ void PointIntegration::gather(std::span<const Mat3> stress, Vector& f) const {
 #pragma omp parallel for schedule(static)
   for (Index K = 0; K < N; ++K) {
     Vec3 acc = Vec3::Zero();
-    for (Index s : users_.of(K)) {
-      const Mat3& Q = stress[slot_point_[s]];
-      const double* gs = g + dim * s;
+    for (Index k = users_.start[K]; k < users_.start[K + 1]; ++k) {
+      const Mat3& Q = stress[user_point_[k]];
+      const double* gs = g + dim * users_.index[k];
       if (dim == 3)
         acc += Q * Vec3(gs[0], gs[1], gs[2]);
       else
@@ -164,7 +180,7 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
   const Index P = table.point_count(), groups = (P + group_size - 1) / group_size;
   std::vector<Vec3> centre(groups, Vec3::Zero());
   double reach = 0.0;  // the largest distance from a group's centroid to one of its nodes
-  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+#pragma omp parallel for schedule(static) reduction(max : reach)
   for (Index g = 0; g < groups; ++g) {
     const auto [begin, end] = group_points(g * group_size, group_size, P);
     std::size_t count = 0;
@@ -173,8 +189,9 @@ PointSchedule schedule_points(const ShapeTable& table, std::span<const Vec3> nod
     if (count > 0) centre[g] /= static_cast<double>(count);
     for (Index p = begin; p < end; ++p)
       for (Index J : table.neighbours.of(p)) reach = std::max(reach, (nodes[J] - centre[g]).norm());
-    low = low.cwiseMin(centre[g]), high = high.cwiseMax(centre[g]);
   }
+  Vec3 low = Vec3::Constant(std::numeric_limits<double>::infinity()), high = -low;
+  for (const Vec3& c : centre) low = low.cwiseMin(c), high = high.cwiseMax(c);
   // Two groups sharing a node have centroids within 2 reach: cubes of that width
   // (a hair more for round-off), same-colour cubes a cube apart.
   const double width = 2.0 * reach * (1.0 + 1e-9) + 1e-300;

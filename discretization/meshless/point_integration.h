@@ -117,7 +117,7 @@ class PointIntegration {
   std::vector<double> weights_;
   PointSchedule schedule_;        // for assembly
   NeighborLists users_;           // per node: the slots holding it
-  std::vector<Index> slot_point_; // per slot: its point
+  std::vector<Index> user_point_; // per entry of users_.index: its slot's point (read with it, not through it)
 };
 
 }  // namespace kerf
