@@ -315,6 +315,10 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
   if (scene.discretization.method == Method::nodal &&
       scene.discretization.meshless.stabilization == NodalStabilization::nsni)
     tables += 8.0 * d * d * e.nodes * e.neighbors + 8.0 * d * e.nodes;
+  // EFG's stiffness rows read the law's dP/dF at each point, kept a point unless the law is linear.
+  if (scene.discretization.method == Method::efg && scene.solve.solves_linear_systems() &&
+      scene.material.model != MaterialModel::linear)
+    tables += 81.0 * 8.0 * e.points;
   m.tables = tables / mb;
   // A nonlinear body's factor, once stale, preconditions CG: with its single-precision
   // copy, from the last 8 solutions (solvers/solution_history.h).

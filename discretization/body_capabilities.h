@@ -12,7 +12,7 @@
 //   DiscretizationFigures  efg, nodal        MLS conditioning for the summary
 //   ElementStepBound       fem               a cheap safe explicit step
 //   MeshedBody             fem               the mesh a state is carried onto
-//   MatrixAssembly         fem               K written straight into a CSR matrix
+//   MatrixAssembly         fem, efg          K written straight into a CSR matrix
 //   PartitionedAssembly    fem               under MPI, only this rank's cells
 #include <map>
 #include <memory>
@@ -132,10 +132,12 @@ struct CsrView {
 class MatrixAssembly {
  public:
   virtual ~MatrixAssembly() = default;
-  /// The same as tangent(u, add_into(matrix), f), each block's places in the
-  /// matrix taken from a table built once per pattern instead of searched:
-  /// `matrix` holds every block tangent() writes, and a pattern once seen
-  /// must not change in place.
+  /// The same as tangent(u, add_into(matrix), f), to round-off, without
+  /// searching the matrix for each block's places (FEM: a table built once per
+  /// pattern, which must not change in place once seen; EFG: node by node).
+  /// `matrix` holds every block tangent() writes. A body may copy its
+  /// symmetric part's lower half from the upper (EFG): the matrix must hold a
+  /// symmetric matrix before, as the solvers' zeroed one is.
   virtual void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const = 0;
 };
 

@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "core/check.h"
+#include "core/parallel_failure.h"
+#include "discretization/csr_block_sink.h"
 #include "discretization/meshless/efg_cell_rules.h"
 #include "discretization/meshless/integration_constraint.h"
 #include "problem/selection.h"
@@ -221,6 +223,33 @@ void EfgBody::tangent(const Vector& u, const BlockSink& sink, Vector* f) const {
   assemble_material_blocks(points_.shapes(), points_.schedule(), points_.weights(), law_, u, sink);
   if (constraints_) constraints_->add_tangent(u, sink);
   if (f) internal_force(u, *f);
+}
+
+void EfgBody::add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const {
+  KERF_CHECK(u.size() == dof_count(), "displacement vector has ", u.size(), " entries; expected ", dof_count());
+  point_tangents(u);
+  points_.add_stiffness_rows(tangents_, matrix);
+  if (constraints_) constraints_->add_tangent(u, add_into(matrix, 1.0, domain_.dimension()));
+  if (f) internal_force(u, *f);
+}
+
+void EfgBody::point_tangents(const Vector& u) const {
+  if (law_.is_linear()) {  // the same dP/dF everywhere
+    Mat3 P;
+    tangents_.resize(1);
+    law_.stress_and_tangent(Mat3::Identity(), P, tangents_[0]);
+    return;
+  }
+  const Index count = points_.point_count();
+  tangents_.resize(count);
+  ParallelFailure failure;
+#pragma omp parallel for schedule(static)
+  for (Index p = 0; p < count; ++p)
+    failure.run([&] {
+      Mat3 P;
+      law_.stress_and_tangent(deformation_gradient(points_.shapes(), p, u), P, tangents_[p]);
+    });
+  failure.rethrow_if_failed();
 }
 
 void EfgBody::visit_couplings(const CouplingVisitor& visit) const {

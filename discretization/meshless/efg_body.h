@@ -20,7 +20,8 @@ namespace kerf {
 class EfgBody final : public MeshlessBody,
                       public WeakConstraints,
                       public CutsInShapeFunctions,
-                      public PartitionedAssembly {
+                      public PartitionedAssembly,
+                      public MatrixAssembly {
  public:
   /// Among MPI ranks (`mpi`) the body computes this rank's part alone
   /// (PartitionedAssembly): it owns the rows of an even split of the nodes and
@@ -46,6 +47,10 @@ class EfgBody final : public MeshlessBody,
   /// Not reentrant: two calls on one body must not run at the same time (per-point scratch).
   void internal_force(const Vector& u, Vector& f) const override;
   void tangent(const Vector& u, const BlockSink& sink, Vector* f) const override;
+  /// The material part node by node (PointIntegration::add_stiffness_rows:
+  /// `matrix` must hold a symmetric matrix before, zero as the solvers pass
+  /// it), the weak constraints' through a sink on it. Not reentrant.
+  void add_tangent_into(const Vector& u, const CsrView& matrix, Vector* f) const override;
   double strain_energy(const Vector& u) const override;
 
   Vector lumped_mass() const override;
@@ -71,6 +76,8 @@ class EfgBody final : public MeshlessBody,
   void share_nodes();
   /// The integration constraint's residual now (Gauss points: no correction), over every rank's points.
   void record_constraint_residual();
+  /// The law's dP/dF at each point at u, into tangents_ (one for a linear law).
+  void point_tangents(const Vector& u) const;
   /// This rank's points as the weak constraints see them (with the ranks, to add up their sums).
   WeakBoundaryConditions::VolumePoints volume_points() const;
 
@@ -84,6 +91,7 @@ class EfgBody final : public MeshlessBody,
   std::vector<Index> touched_nodes_;                // the nodes its points reach and its own, sorted
   std::unique_ptr<WeakBoundaryConditions> constraints_;  // null with essential: parameters
   mutable std::vector<Mat3> stress_;                // per point of points_
+  mutable std::vector<Mat9> tangents_;              // per point of points_, or one for a linear law
 };
 
 }  // namespace kerf

@@ -8,6 +8,7 @@
 #include <span>
 #include <vector>
 
+#include "discretization/body_capabilities.h"
 #include "discretization/discrete_body.h"
 #include "discretization/meshless/shape_table.h"
 #include "problem/material.h"
@@ -110,6 +111,14 @@ class PointIntegration {
   /// f_K = sum over the points p whose neighbours hold K of stress[p] grad phi_K(x_p).
   /// stress: a dim x dim (top-left) matrix per point (weight x P, N m); f: dim per node.
   void gather(std::span<const Mat3> stress, Vector& f) const;
+  /// Adds sum_p w_p G_p^T dPdF_p G_p into K, node by node: each node's rows
+  /// gather the points holding it (no two threads write one entry, none is
+  /// searched, no block is formed, the sums do not depend on the thread
+  /// count). `tangents`: one per point, or one for every point (a linear
+  /// law). K's pattern holds whole nodes (dim dofs each) and every node pair a
+  /// point couples. The upper node blocks are added and the lower ones copied
+  /// from them: K must hold a symmetric matrix before (zero, as the solvers pass it).
+  void add_stiffness_rows(std::span<const Mat9> tangents, const CsrView& K) const;
 
  private:
   ShapeTable shapes_;
