@@ -10,6 +10,7 @@
 #include "discretization/csr_block_sink.h"
 #include "discretization/meshless/efg_cell_rules.h"
 #include "discretization/meshless/integration_constraint.h"
+#include "discretization/meshless/point_sums.h"
 #include "problem/selection.h"
 
 namespace kerf {
@@ -145,12 +146,14 @@ void EfgBody::assemble_loads() {
   load_ = Vector::Zero(dof_count());
   if (gravity_.squaredNorm() > 0.0) {
     const ShapeTable& t = points_.shapes();
-    for (Index p = 0; p < points_.point_count(); ++p) {
+    std::vector<double> gravity_load(dim * node_count(), 0.0);
+    add_over_points(points_.point_count(), gravity_load, [&](Index p, double* sums) {
       auto near = t.neighbours.of(p);
       const double* phi = t.values_of(p);
       for (std::size_t k = 0; k < near.size(); ++k)
-        for (int i = 0; i < dim; ++i) load_[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * gravity_[i];
-    }
+        for (int i = 0; i < dim; ++i) sums[dim * near[k] + i] += density_ * points_.weight(p) * phi[k] * gravity_[i];
+    });
+    load_ = Eigen::Map<const Vector>(gravity_load.data(), dof_count());
     mpi_.sum_on_every_rank(std::span<double>(load_.data(), load_.size()));
   }
   domain_.add_boundary_loads(boundary_, load_);  // every boundary point, on every rank

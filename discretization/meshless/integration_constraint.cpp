@@ -4,6 +4,7 @@
 
 #include "core/check.h"
 #include "core/gmres.h"
+#include "discretization/meshless/point_sums.h"
 
 namespace kerf {
 
@@ -22,23 +23,32 @@ void add_boundary_terms(const ShapeTable& at_boundary, const BoundaryQuadrature&
 VolumeTerms volume_terms(const ShapeTable& points, std::span<const double> weights, Index node_count,
                          std::span<const double> offsets) {
   const int dim = points.dimension;
-  VolumeTerms t{std::vector<double>(dim * node_count, 0.0), std::vector<double>(node_count, 0.0),
-                std::vector<double>(node_count, 0.0)};
-  for (Index p = 0; p < points.point_count(); ++p) {
+  // Per node, packed: the gradient sum (dim), the magnitude, the value sum.
+  const int width = dim + 2;
+  std::vector<double> packed(width * node_count, 0.0);
+  add_over_points(points.point_count(), packed, [&](Index p, double* sums) {
     auto near = points.neighbours.of(p);
     const double* g = points.gradients_of(p);
     const double* psi = points.values_of(p);
     const double* o = offsets.empty() ? nullptr : offsets.data() + dim * points.neighbours.start[p];
     const double w = weights[p];
     for (std::size_t k = 0; k < near.size(); ++k) {
+      double* at = sums + width * near[k];
       double squared = 0.0;
       for (int i = 0; i < dim; ++i) {
-        t.gradient_sum[dim * near[k] + i] += w * (g[dim * k + i] + (o ? o[dim * k + i] : 0.0));
+        at[i] += w * (g[dim * k + i] + (o ? o[dim * k + i] : 0.0));
         squared += g[dim * k + i] * g[dim * k + i];
       }
-      t.magnitude[near[k]] += w * std::sqrt(squared);
-      t.value_sum[near[k]] += w * psi[k];
+      at[dim] += w * std::sqrt(squared);
+      at[dim + 1] += w * psi[k];
     }
+  });
+  VolumeTerms t{std::vector<double>(dim * node_count), std::vector<double>(node_count),
+                std::vector<double>(node_count)};
+  for (Index I = 0; I < node_count; ++I) {
+    for (int i = 0; i < dim; ++i) t.gradient_sum[dim * I + i] = packed[width * I + i];
+    t.magnitude[I] = packed[width * I + dim];
+    t.value_sum[I] = packed[width * I + dim + 1];
   }
   return t;
 }

@@ -8,6 +8,7 @@
 
 #include "core/check.h"
 #include "core/parallel_failure.h"
+#include "discretization/meshless/point_sums.h"
 
 namespace kerf {
 
@@ -304,47 +305,38 @@ std::vector<double> material_diagonal(const ShapeTable& table, std::span<const d
                                       Index node_count) {
   const int dim = table.dimension;
   std::vector<double> diagonal(dim * node_count, 0.0);
-  for (Index p = 0; p < table.point_count(); ++p) {
+  add_over_points(table.point_count(), diagonal, [&](Index p, double* sums) {
     auto near = table.neighbours.of(p);
     const double* g = table.gradients_of(p);
     for (std::size_t k = 0; k < near.size(); ++k) {
       double squared = 0.0;
       for (int l = 0; l < dim; ++l) squared += g[dim * k + l] * g[dim * k + l];
       for (int i = 0; i < dim; ++i)
-        diagonal[dim * near[k] + i] +=
+        sums[dim * near[k] + i] +=
             weights[p] * (lame.mu * squared + (lame.lambda + lame.mu) * g[dim * k + i] * g[dim * k + i]);
     }
-  }
+  });
   return diagonal;
 }
 
 std::vector<double> material_diagonal(const ShapeTable& table, std::span<const double> weights, const MaterialLaw& law,
                                       const Vector& u, Index node_count) {
   const int dim = table.dimension;
-  const Index count = table.point_count();
-  // The tangents in parallel (the law's cost), then added up in point order.
-  std::vector<Mat9> tangent(count);
-  ParallelFailure failure;
-#pragma omp parallel for schedule(static)
-  for (Index p = 0; p < count; ++p)
-    failure.run([&] {
-      Mat3 P;
-      law.stress_and_tangent(deformation_gradient(table, p, u), P, tangent[p]);
-    });
-  failure.rethrow_if_failed();
   std::vector<double> diagonal(dim * node_count, 0.0);
-  for (Index p = 0; p < count; ++p) {
+  add_over_points(table.point_count(), diagonal, [&](Index p, double* sums) {
+    Mat3 P;
+    Mat9 A;
+    law.stress_and_tangent(deformation_gradient(table, p, u), P, A);
     auto near = table.neighbours.of(p);
     const double* g = table.gradients_of(p);
-    const Mat9& A = tangent[p];
     for (std::size_t k = 0; k < near.size(); ++k)
       for (int i = 0; i < dim; ++i) {
         double sum = 0.0;
         for (int l = 0; l < dim; ++l)
           for (int m = 0; m < dim; ++m) sum += g[dim * k + l] * A(i + 3 * l, i + 3 * m) * g[dim * k + m];
-        diagonal[dim * near[k] + i] += weights[p] * sum;
+        sums[dim * near[k] + i] += weights[p] * sum;
       }
-  }
+  });
   return diagonal;
 }
 
