@@ -36,7 +36,7 @@ class EfgBody final : public MeshlessBody,
 
   /// Every rank's Gauss points.
   Index element_count() const override {
-    return domain_.background().cell_count() * points_.schedule().group_size;
+    return domain_.background().cell_count() * points_.points_per_group();
   }
   /// This rank's Gauss points (every point in a serial run), cell by cell.
   const PointIntegration& points() const { return points_; }

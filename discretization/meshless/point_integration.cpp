@@ -17,7 +17,8 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> position
     : shapes_(std::move(shapes)),
       positions_(std::move(positions)),
       weights_(std::move(weights)),
-      schedule_(schedule_points(shapes_, nodes, points_per_cell)) {
+      nodes_(nodes.begin(), nodes.end()),
+      points_per_group_(points_per_cell) {
   const Index node_count = static_cast<Index>(nodes.size());
   KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count() && positions_.size() == weights_.size(),
              "integration weights and positions: ", weights_.size(), " and ", positions_.size(), " for ",
@@ -38,6 +39,11 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> position
       users_.index[at] = s;
       user_point_[at] = p;
     }
+}
+
+const PointSchedule& PointIntegration::schedule() const {
+  std::call_once(schedule_->made, [&] { schedule_->schedule = schedule_points(shapes_, nodes_, points_per_group_); });
+  return schedule_->schedule;
 }
 
 std::vector<Index> PointIntegration::points_holding(std::span<const Index> nodes) const {

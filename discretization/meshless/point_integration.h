@@ -5,6 +5,8 @@
 // transposed neighbour lists (no two threads write the same entry, no
 // atomics, results independent of the thread count).
 #include <functional>
+#include <memory>
+#include <mutex>
 #include <span>
 #include <vector>
 
@@ -105,7 +107,11 @@ class PointIntegration {
   std::vector<Index> points_holding(std::span<const Index> nodes) const;
   std::span<const double> weights() const { return weights_; }
   double weight(Index p) const { return weights_[p]; }
-  const PointSchedule& schedule() const { return schedule_; }
+  /// The schedule of the points' blocks through a sink (their cells' groups),
+  /// made at its first call (the solvers' path, add_stiffness_rows, needs none).
+  const PointSchedule& schedule() const;
+  /// The points of a group (a cell's Gauss points).
+  Index points_per_group() const { return points_per_group_; }
   Index point_count() const { return shapes_.point_count(); }
 
   /// f_K = sum over the points p whose neighbours hold K of stress[p] grad phi_K(x_p).
@@ -124,7 +130,13 @@ class PointIntegration {
   ShapeTable shapes_;
   std::vector<Vec3> positions_;
   std::vector<double> weights_;
-  PointSchedule schedule_;        // for assembly
+  std::vector<Vec3> nodes_;       // the node positions, for the schedule
+  Index points_per_group_;
+  struct LazySchedule {
+    std::once_flag made;
+    PointSchedule schedule;
+  };
+  std::unique_ptr<LazySchedule> schedule_ = std::make_unique<LazySchedule>();
   NeighborLists users_;           // per node: the slots holding it
   std::vector<Index> user_point_; // per entry of users_.index: its slot's point (read with it, not through it)
 };
