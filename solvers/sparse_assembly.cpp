@@ -183,8 +183,9 @@ void FreeDofs::prepare_matrix(const SparseMatrix& full) {
   }
   for (Index i = 0; i < n; ++i) outer[i + 1] += outer[i];
   restricted_.resizeNonZeros(outer[n]);
-  source_position_.resize(static_cast<std::size_t>(outer[n]));
+  source_position_.resize(static_cast<std::size_t>(outer[n]));  // not zeroed: the rows below write each entry
   Index* inner = restricted_.innerIndexPtr();
+  double* values = restricted_.valuePtr();
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
     const Index r = full_of_free_[i];
@@ -193,10 +194,10 @@ void FreeDofs::prepare_matrix(const SparseMatrix& full) {
       const Index j = free_of_full_[full_inner[p]];
       if (j < 0) continue;
       inner[k] = j;
+      values[k] = 0.0;
       source_position_[k++] = p;
     }
   }
-  std::fill(restricted_.valuePtr(), restricted_.valuePtr() + outer[n], 0.0);
   restricted_diagonal_.clear();
 }
 

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "core/uninitialized_vector.h"
 #include "discretization/body_capabilities.h"
 #include "discretization/csr_block_sink.h"
 
@@ -66,7 +67,7 @@ class FreeDofs {
   std::vector<Index> free_of_full_;
   std::vector<Index> full_of_free_;
   SparseMatrix restricted_;
-  std::vector<Index> source_position_;  // for each restricted value, its position in the full matrix
+  UninitializedVector<Index> source_position_;  // for each restricted value, its position in the full matrix
   std::vector<Index> restricted_diagonal_;  // by free dof, found at the first add_to_diagonal
 };
 
