@@ -151,7 +151,11 @@ void ImplicitSystem::internal_force(const Vector& u, Vector& f, bool with_tangen
       SparseMatrix K = stiffness_;
       std::fill(K.valuePtr(), K.valuePtr() + K.nonZeros(), 0.0);
       const DiscreteBody& body = mechanics_.body();
-      body.tangent(Vector::Zero(body.dof_count()), add_into(K, 1.0, body.dofs_per_node()), nullptr);
+      const Vector rest = Vector::Zero(body.dof_count());
+      if (const MatrixAssembly* direct = capability<MatrixAssembly>(body))  // K is zero: symmetric, as it asks
+        direct->add_tangent_into(rest, csr_view(K), nullptr);
+      else
+        body.tangent(rest, add_into(K, 1.0, body.dofs_per_node()), nullptr);
       linear_values_.assign(K.valuePtr(), K.valuePtr() + K.nonZeros());
     }
     Eigen::Map<const SparseMatrix> K(stiffness_.rows(), stiffness_.cols(), stiffness_.nonZeros(),
