@@ -1,7 +1,8 @@
 #!/bin/bash
 # EFG against tet10 on the cantilever at equal accuracy (issue 40, item 4):
 # wall time of whole `kerf run`s, each configuration three times, interleaved,
-# nothing else running. Usage: measure.sh [kerf] > runs.txt
+# nothing else running. Usage: [REPS=3] measure.sh [kerf] > runs.txt (a kerf
+# copied with its modules: LD_LIBRARY_PATH=its/modules).
 # Reference tip (converged tet10, results/cost.md): -3.7662 mm.
 K=${1:-build/cli/kerf}
 S=scenes/cantilever.yaml
@@ -17,7 +18,7 @@ declare -A runs=(
   [efg_gauss3_2mm]="$efg $gauss3 --set discretization.meshless.spacing=0.002"
   [efg_symmetric5_2mm]="$efg $symmetric --set discretization.meshless.spacing=0.002"
 )
-for rep in 1 2 3; do
+for rep in $(seq ${REPS:-3}); do
   for name in tet10_3.33mm tet10_2.5mm efg_gauss3_2.5mm efg_symmetric5_2.5mm efg_gauss3_2mm efg_symmetric5_2mm; do
     /usr/bin/time -f "%e" -o "$out/time" \
       $K run $S --set output.vtk=false --out "$out/$name" ${runs[$name]} > /dev/null 2>&1
