@@ -71,6 +71,11 @@ __attribute__((always_inline)) inline bool add_upper_row(const RowInputs& in, In
   const Index* columns = in.K.inner + begin;
   for (Index t = 0; t < length; t += DIM) offset_of[columns[t] / DIM] = t;
   const Index diagonal = offset_of[a];  // a's own columns: the first block of the upper half
+  if (diagonal < 0) {                    // a pattern without them (build_pattern's always has them)
+    missing = {in.user_point[in.users.start[a]], a, a};
+    for (Index t = 0; t < length; t += DIM) offset_of[columns[t] / DIM] = -1;
+    return false;
+  }
   std::fill(sums, sums + (length - diagonal), v4d{0.0, 0.0, 0.0, 0.0});
   const Index* start = in.table.neighbours.start.data();
   const Index* index = in.table.neighbours.index.data();
@@ -162,10 +167,12 @@ __attribute__((always_inline)) inline void add_upper_rows(const RowInputs& in, I
 __attribute__((always_inline)) inline void add_upper_rows_any(const RowInputs& in, Index nodes, RowScratch& scratch,
                                                               MissingPair& missing) {
   const bool shared = in.tangents.size() == 1;
-  if (in.table.dimension == 3)
-    shared ? add_upper_rows<3, true>(in, nodes, scratch, missing) : add_upper_rows<3, false>(in, nodes, scratch, missing);
-  else
+  if (in.table.dimension == 2)
     shared ? add_upper_rows<2, true>(in, nodes, scratch, missing) : add_upper_rows<2, false>(in, nodes, scratch, missing);
+  else if (shared)
+    add_upper_rows<3, true>(in, nodes, scratch, missing);
+  else
+    add_upper_rows<3, false>(in, nodes, scratch, missing);
 }
 
 void upper_rows_baseline(const RowInputs& in, Index nodes, RowScratch& scratch, MissingPair& missing) {
