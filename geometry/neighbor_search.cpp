@@ -39,16 +39,21 @@ void PointIndex::within(const Vec3& x, double radius, std::vector<Index>& out, b
   if (in_order) std::sort(out.begin(), out.end());
 }
 
-NeighborLists transpose_slots(const NeighborLists& lists, Index count) {
+NeighborLists transpose_slots(const NeighborLists& lists, Index count, std::vector<Index>* entry_list) {
   // Counting sort: slots of a target in list order.
   NeighborLists t;
   t.start.assign(count + 1, 0);
   for (Index K : lists.index) ++t.start[K + 1];
   for (Index K = 0; K < count; ++K) t.start[K + 1] += t.start[K];
-  const Index slots = static_cast<Index>(lists.index.size());
-  t.index.resize(slots);
+  t.index.resize(lists.index.size());
+  if (entry_list) entry_list->resize(lists.index.size());
   std::vector<Index> next(t.start.begin(), t.start.end() - 1);
-  for (Index s = 0; s < slots; ++s) t.index[next[lists.index[s]]++] = s;
+  for (Index l = 0; l < lists.size(); ++l)
+    for (Index s = lists.start[l]; s < lists.start[l + 1]; ++s) {
+      const Index at = next[lists.index[s]]++;
+      t.index[at] = s;
+      if (entry_list) (*entry_list)[at] = l;
+    }
   return t;
 }
 

@@ -20,8 +20,10 @@ struct NeighborLists {
 };
 
 /// The transpose of lists over `count` targets: for each target, the slots
-/// (positions in lists.index) that hold it, in increasing order.
-NeighborLists transpose_slots(const NeighborLists& lists, Index count);
+/// (positions in lists.index) that hold it, in increasing order. With
+/// `entry_list`, also the list holding each entry's slot (entry k of the
+/// result's index), written in the same pass.
+NeighborLists transpose_slots(const NeighborLists& lists, Index count, std::vector<Index>* entry_list = nullptr);
 
 /// The lists (ascending) that hold one of `targets`, from the transpose
 /// (`users`: per target, its slots) and each slot's list (`slot_list`).

@@ -36,10 +36,8 @@ NeighborLists gather_blocks(int dpn, const std::function<void(const CouplingVisi
 /// upper half of the node couplings (each pair is visited from its first node
 /// alone, half the visits of marking every block holding a node).
 std::vector<std::vector<Index>> later_couplings(const NeighborLists& blocks, Index nodes) {
-  const NeighborLists holding = transpose_slots(blocks, nodes);  // per node: the slots holding it
-  std::vector<Index> block_end(blocks.index.size());
-  for (Index b = 0; b < blocks.size(); ++b)
-    std::fill(block_end.begin() + blocks.start[b], block_end.begin() + blocks.start[b + 1], blocks.start[b + 1]);
+  std::vector<Index> holding_block;  // per entry of holding: the block holding the slot
+  const NeighborLists holding = transpose_slots(blocks, nodes, &holding_block);  // per node: the slots holding it
   std::vector<std::vector<Index>> later(nodes);
   ParallelFailure failure;  // the lists allocate
 #pragma omp parallel
@@ -50,14 +48,11 @@ std::vector<std::vector<Index>> later_couplings(const NeighborLists& blocks, Ind
     for (Index a = 0; a < nodes; ++a)
       failure.run([&] {
         std::vector<Index>& list = later[a];
-        const std::span<const Index> slots = holding.of(a);
-        for (std::size_t h = 0; h < slots.size(); ++h) {
-          const Index slot = slots[h];
-          if (h + 8 < slots.size()) {  // the blocks lie scattered: their misses are the loop's cost
-            __builtin_prefetch(&block_end[slots[h + 8]]);
-            __builtin_prefetch(&blocks.index[slots[h + 8]]);
-          }
-          for (Index k = slot + 1; k < block_end[slot]; ++k) {
+        const Index last = holding.start[a + 1];
+        for (Index h = holding.start[a]; h < last; ++h) {
+          const Index slot = holding.index[h], end = blocks.start[holding_block[h] + 1];
+          if (h + 8 < last) __builtin_prefetch(&blocks.index[holding.index[h + 8]]);  // scattered: the misses cost
+          for (Index k = slot + 1; k < end; ++k) {
             const Index c = blocks.index[k];
             if (marked_by[c] != a) marked_by[c] = a, list.push_back(c);
           }

@@ -23,22 +23,12 @@ PointIntegration::PointIntegration(ShapeTable shapes, std::vector<Vec3> position
   KERF_CHECK(static_cast<Index>(weights_.size()) == shapes_.point_count() && positions_.size() == weights_.size(),
              "integration weights and positions: ", weights_.size(), " and ", positions_.size(), " for ",
              shapes_.point_count(), " points");
-  // The transposed lists and each entry's point in one pass (a counting sort).
   const auto& nb = shapes_.neighbours;
-  users_.start.assign(node_count + 1, 0);
-  for (Index K : nb.index) ++users_.start[K + 1];
-  for (Index K = 0; K < node_count; ++K) users_.start[K + 1] += users_.start[K];
-  users_.index.resize(nb.index.size());
-  user_point_.resize(nb.index.size());
-  std::vector<Index> next(users_.start.begin(), users_.start.end() - 1);
   for (Index p = 0; p < nb.size(); ++p)
-    for (Index s = nb.start[p]; s < nb.start[p + 1]; ++s) {
-      KERF_CHECK(s == nb.start[p] || nb.index[s - 1] < nb.index[s], "internal: the neighbours of point ", p,
+    for (Index s = nb.start[p] + 1; s < nb.start[p + 1]; ++s)
+      KERF_CHECK(nb.index[s - 1] < nb.index[s], "internal: the neighbours of point ", p,
                  " are not in increasing order");  // add_stiffness_rows reads the nodes after one in its list
-      const Index at = next[nb.index[s]]++;
-      users_.index[at] = s;
-      user_point_[at] = p;
-    }
+  users_ = transpose_slots(nb, node_count, &user_point_);
 }
 
 const PointSchedule& PointIntegration::schedule() const {
