@@ -1,6 +1,7 @@
 #include "app/resource_estimate.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include "core/check.h"
 #include "discretization/fem/simplex_quadrature.h"
 #include "discretization/meshless/efg_cell_rules.h"
+#include "geometry/lattice_cells.h"
 #include "problem/body_plan.h"
 
 namespace kerf {
@@ -218,8 +220,15 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const int d = scene.dimension;
   const BodyPlan plan = body_plan(scene);
   MeshCounts mesh;
-  if (plan.mesh.made) mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
+  if (plan.mesh.lattice) {
+    const std::array<int, 3> n = lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size);
+    mesh.cells = lattice_cell_count(d, n);
+    mesh.nodes = (n[0] + 1.0) * (n[1] + 1.0) * (d == 3 ? n[2] + 1.0 : 1.0);
+  } else if (plan.mesh.made) {
+    mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
+  }
   e.mesh_cells = mesh.cells, e.mesh_nodes = mesh.nodes;
+  e.gmsh_meshes = plan.mesh.made && !plan.mesh.lattice;
   e.size_key = plan.size_key, e.size = plan.size;
   if (!plan.method->meshless) {
     const ElementDescriptor& element = element_descriptor(scene.discretization.fem.element);
@@ -281,11 +290,11 @@ int written_steps(const Scene& scene) {
   return static_cast<int>(std::min(steps / scene.output.vtk_every, 1e9)) + 1;
 }
 
-/// The process and the modules the run loads: gmsh where it makes a mesh,
+/// The process and the modules the run loads: gmsh where it makes a mesh (or reads one),
 /// PETSc for MPI ranks or its solver, VTK for ParaView's files.
 double base_mb(const Scene& scene, const ResourceEstimate& e) {
   double mb = process_mb;
-  if (e.mesh_cells > 0) mb += gmsh_module_mb;
+  if (e.gmsh_meshes) mb += gmsh_module_mb;
   if (e.ranks > 1 || scene.solve.linear_solver == LinearSolverKind::petsc) mb += petsc_module_mb;
   if (scene.output.vtk_every > 0) mb += vtk_module_mb;
   return mb;
@@ -305,7 +314,7 @@ MemoryParts memory_parts(const Scene& scene, const ResourceEstimate& e) {
   const int d = scene.dimension;
   constexpr double mb = 1048576.0;
   MemoryParts m;
-  m.meshing = gmsh_bytes_per_cell * e.mesh_cells / mb;
+  m.meshing = e.gmsh_meshes ? gmsh_bytes_per_cell * e.mesh_cells / mb : 0.0;
   m.mesh = 8.0 * e.mesh_cells * (d + 1) * 2.0 / mb;
   const double copies = scene.discretization.method == Method::efg ? efg_table_copies : shape_table_copies;
   double tables = copies * e.points * e.neighbors * (8.0 * (1 + d) + 8.0);

@@ -52,7 +52,7 @@ ResourceEstimate estimate_and_guard(const Scene& scene, const RunOptions& option
 /// cells says so first and then shows it is alive every 10 s.
 std::optional<ProgressHeartbeat> announce_long_meshing(const Scene& scene, const RunOptions& options,
                                                        const ResourceEstimate& estimate) {
-  if (options.quiet || estimate.mesh_cells <= 1e6) return std::nullopt;
+  if (options.quiet || !estimate.gmsh_meshes || estimate.mesh_cells <= 1e6) return std::nullopt;
   std::fprintf(stderr, "kerf: %s: meshing about %.3g cells (estimated; kerf check prints the estimate)\n",
                scene.name.c_str(), estimate.mesh_cells);
   char what[256];

@@ -1,5 +1,6 @@
 #include "discretization/body_factory.h"
 
+
 #include <algorithm>
 #include <string>
 
@@ -11,6 +12,7 @@
 #include "geometry/box_mesher.h"
 #include "geometry/cut_cell_removal.h"
 #include "geometry/cut_surface.h"
+#include "geometry/lattice_cells.h"
 #include "geometry/mesh_from_first_rank.h"
 #include "geometry/mesh_ordering.h"
 #include "geometry/msh_reader.h"
@@ -100,8 +102,11 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Sc
                                                  SharedCuts cuts, RunReport& report) {
   std::optional<Mesh> background;
   if (plan.mesh.made) {
-    background =
-        corner_mesh(mesh_from_first_rank(mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
+    // The lattice's own cells are the same on every rank; gmsh's mesh is made once, on the first.
+    background = plan.mesh.lattice
+                     ? lattice_cells(scene.dimension, scene.box->min, scene.box->max, plan.mesh.size)
+                     : corner_mesh(mesh_from_first_rank(
+                           mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
     order_for_locality(*background);
     report.add_stage("mesh");
   }

@@ -58,7 +58,8 @@ BodyPlan body_plan(const Scene& scene) {
   // A lattice of nodes; linear background cells where EFG integrates, loads act or spheres touch.
   const bool needs_cells = plan.method->integration == Integration::background_cells || has_boundary_loads(scene) ||
                            !scene.contact.empty();
-  if (needs_cells) plan.mesh = {true, 1, d.meshless.spacing};
+  if (needs_cells)
+    plan.mesh = {true, 1, d.meshless.spacing, background_cells_of(scene) == BackgroundCells::lattice};
   plan.size_key = "discretization.meshless.spacing", plan.size = d.meshless.spacing;
   plan.whole_on_every_rank = whole_on_every_rank(scene);
   return plan;

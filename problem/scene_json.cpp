@@ -104,7 +104,8 @@ json scene_to_json(const Scene& s) {
         {"stabilization", to_string(ml.stabilization)},
         {"gradient", to_string(ml.gradient)},
         {"vci", to_string(ml.vci)},
-        {"cut_cells", to_string(cut_cells_of(s))}}}};
+        {"cut_cells", to_string(cut_cells_of(s))},
+        {"background_cells", to_string(background_cells_of(s))}}}};
   // Only where it acts: a resolved scene must read back (it is refused elsewhere).
   if (essential_method(ml, d.method) == EssentialMethod::nitsche)
     j["discretization"]["meshless"]["nitsche_safety"] = nitsche_safety(ml);

@@ -178,7 +178,7 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
   if (f.has("meshless")) {
     YamlField m = f["meshless"];
     m.allow_only({"nodes", "spacing", "support", "basis", "weight", "quadrature", "essential", "stabilization", "gradient",
-                  "vci", "cut_cells", "nitsche_safety"});
+                  "vci", "cut_cells", "background_cells", "nitsche_safety"});
     MeshlessOptions& o = d.meshless;
     if (m.has("nodes")) o.nodes = m["nodes"].enumeration<NodePlacement>();
     if (m.has("spacing")) o.spacing = m["spacing"].number();
@@ -207,6 +207,7 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
     if (m.has("gradient")) o.gradient = m["gradient"].enumeration<NodalGradient>();
     if (m.has("vci")) o.vci = m["vci"].enumeration<VciOrder>();
     if (m.has("cut_cells")) o.cut_cells = m["cut_cells"].enumeration<CutCells>();
+    if (m.has("background_cells")) o.background_cells = m["background_cells"].enumeration<BackgroundCells>();
     if (m.has("nitsche_safety")) o.nitsche_safety = m["nitsche_safety"].number();
   }
 }

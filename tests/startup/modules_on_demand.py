@@ -19,7 +19,11 @@ for heavy in ("libgmsh", "libpetsc", "libmpi", "libvtk"):
 cases = [  # the scene, what the run asks, and the modules it must have loaded
     ("nodal_lattice", hanging, [], set()),  # no mesh: no boundary load, no contact
     ("nodal_lattice_paraview", hanging, ["output.vtk=true"], {"vtk"}),
-    ("nodal_traction", pulled, ["discretization.method=nodal", "output.vtk=false"], {"gmsh"}),  # its boundary's cells
+    # a lattice's boundary cells are its own (meshless.background_cells: auto); gmsh meshes them when asked
+    ("nodal_traction", pulled, ["discretization.method=nodal", "output.vtk=false"], set()),
+    ("nodal_traction_gmsh_cells", pulled,
+     ["discretization.method=nodal", "discretization.meshless.background_cells=mesh", "output.vtk=false"], {"gmsh"}),
+    ("efg", pulled, ["discretization.method=efg", "output.vtk=false"], set()),
     ("fem", pulled, ["output.vtk=false"], {"gmsh"}),
     ("fem_mesh_file", f"{scenes}/cube_from_mesh.yaml", ["output.vtk=false"], set()),  # MSH 4.1, read by kerf itself
     ("fem_petsc", pulled, ["output.vtk=false", "solve.linear_solver=petsc"], {"gmsh", "petsc"}),

@@ -4,6 +4,7 @@
 #include <sys/stat.h>
 
 #include <filesystem>
+#include <tuple>
 
 #include "core/check.h"
 #include "problem/scene_json.h"
@@ -131,6 +132,47 @@ TEST(SceneReader, CutCellsTakeTheirNamesAndAutoResolvesByGrowth) {
   expect_contains(m, "cut_cells");
   expect_contains(m, "'halves'");
   expect_contains(m, "whole");
+}
+
+TEST(SceneReader, BackgroundCellsAreTheLatticesOwnUncutAndUntouchedAndLatticeIsRefusedOffALattice) {
+  const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
+  auto resolved = [&](const std::string& meshless, const std::string& rest = "") {
+    return background_cells_of(
+        testing::scene_from_text(box + "discretization: {method: efg, meshless: {" + meshless + "}" + rest + "}\n"));
+  };
+  EXPECT_EQ(testing::scene_from_text(box).discretization.meshless.background_cells, BackgroundCells::automatic);
+  EXPECT_EQ(resolved(""), BackgroundCells::lattice);
+  EXPECT_EQ(resolved("background_cells: auto"), BackgroundCells::lattice);
+  EXPECT_EQ(resolved("background_cells: mesh"), BackgroundCells::mesh);
+  EXPECT_EQ(resolved("background_cells: lattice"), BackgroundCells::lattice);
+  // auto: the mesh where the lattice's cells cannot be
+  const std::string refine = ", refine: [{box: {min: [0,0,0], max: [0.5,0.5,0.5]}, size: 0.001}]";
+  EXPECT_EQ(resolved("nodes: mesh"), BackgroundCells::mesh);
+  EXPECT_EQ(resolved("", refine), BackgroundCells::mesh);
+  const std::string cut = "cuts: [{strip: [[0.5,-1,2], [0.5,-1,0.5], [0.5,2,2], [0.5,2,0.5]]}]\n";
+  auto with_cut = [&](const std::string& meshless) {
+    return background_cells_of(
+        testing::scene_from_text(box + "discretization: {method: efg, meshless: {" + meshless + "}}\n" + cut));
+  };
+  EXPECT_EQ(with_cut(""), BackgroundCells::mesh);
+  const std::string sphere = "contact: [{sphere: {center: [0.5, 0.5, 1.2], radius: 0.3}, displacement: [0, 0, -0.1]}]\n";
+  EXPECT_EQ(background_cells_of(testing::scene_from_text(box + "discretization: {method: efg}\n" + sphere)),
+            BackgroundCells::mesh);
+  EXPECT_EQ(with_cut("background_cells: lattice"), BackgroundCells::lattice);
+  // lattice there is refused, naming the key, the value and why
+  for (const auto& [meshless, rest, why] :
+       {std::tuple<std::string, std::string, std::string>{"nodes: mesh, background_cells: lattice", "", "nodes: mesh"},
+        {"background_cells: lattice", refine, "refine"}}) {
+    const std::string m = testing::scene_refusal(box + "discretization: {method: efg, meshless: {" + meshless + "}" +
+                                                 rest + "}\nsolve: {analysis: static}\n");
+    expect_contains(m, "discretization.meshless.background_cells");
+    expect_contains(m, "'lattice'");
+    expect_contains(m, why);
+  }
+  const std::string m = testing::scene_refusal(box + "discretization: {meshless: {background_cells: cubes}}\n");
+  expect_contains(m, "test.yaml:2:");
+  expect_contains(m, "'cubes'");
+  expect_contains(m, "lattice");
 }
 
 TEST(SceneReader, EfgCellRulesTakeTheirKeysAndRefuseTheOtherRulesKey) {
