@@ -290,7 +290,7 @@ int written_steps(const Scene& scene) {
   return static_cast<int>(std::min(steps / scene.output.vtk_every, 1e9)) + 1;
 }
 
-/// The process and the modules the run loads: gmsh where it makes a mesh (or reads one),
+/// The process and the modules the run loads: gmsh where it makes a mesh (a mesh file counted alike),
 /// PETSc for MPI ranks or its solver, VTK for ParaView's files.
 double base_mb(const Scene& scene, const ResourceEstimate& e) {
   double mb = process_mb;

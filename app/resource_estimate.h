@@ -20,7 +20,7 @@ namespace kerf {
 
 struct ResourceEstimate {
   double mesh_cells = 0.0, mesh_nodes = 0.0;  // the mesh: FEM's, or a meshless body's background
-  bool gmsh_meshes = false;                   // gmsh makes it (not a node lattice's own cells)
+  bool gmsh_meshes = false;                   // gmsh makes it, or a file holds it (not a lattice's own cells)
   double nodes = 0.0, dofs = 0.0;             // the body's
   double points = 0.0;                        // quadrature points (a nodal body's are its nodes)
   double neighbors = 0.0;                     // nodes each meshless point sees

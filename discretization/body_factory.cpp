@@ -1,6 +1,5 @@
 #include "discretization/body_factory.h"
 
-
 #include <algorithm>
 #include <string>
 

@@ -8,19 +8,18 @@
 namespace kerf {
 namespace {
 
-/// The corners of the unit cube, bit 2 the x offset, bit 1 y, bit 0 z.
-constexpr int corner(int x, int y, int z) { return 4 * x + 2 * y + z; }
-
-/// The cube's 5 tetrahedra when its corners of even parity are those with an
-/// even sum of offsets (else swap the roles: `odd` flips every bit's parity).
+/// The cube's 5 tetrahedra; `at` holds its nodes by corner, bit 2 the x
+/// offset, bit 1 y, bit 0 z. The central tet is on the corners whose offsets
+/// sum to an even number, or to an odd one where the cube's own place is odd
+/// (`odd`): either way the corners of even parity over the whole lattice.
 void split_cube(const Index (&at)[8], bool odd, std::vector<Index>& cells) {
-  int even[4], other[4], e = 0, o = 0;
+  int central[4], other[4], e = 0, o = 0;
   for (int c = 0; c < 8; ++c) {
     const bool even_sum = ((c >> 2) + ((c >> 1) & 1) + (c & 1)) % 2 == 0;
-    (even_sum != odd ? even[e++] : other[o++]) = c;
+    (even_sum != odd ? central[e++] : other[o++]) = c;
   }
-  for (int c : even) cells.push_back(at[c]);
-  // Each other corner with its three edge neighbours (one bit away): all of the central tet's parity.
+  for (int c : central) cells.push_back(at[c]);
+  // Each other corner with its three edge neighbours (one bit away), all of them the central tet's.
   for (int c : other) {
     cells.push_back(at[c]);
     for (int bit : {4, 2, 1}) cells.push_back(at[c ^ bit]);

@@ -6,6 +6,8 @@ string(REGEX REPLACE "^# expect: *" "" expected "${first_line}")
 if(expected STREQUAL first_line OR expected STREQUAL "")
   message(FATAL_ERROR "${SCENE}: the first line must be '# expect: TEXT'")
 endif()
+# What an earlier run left there (a summary) must not pass for this run's.
+file(REMOVE_RECURSE ${OUT})
 execute_process(COMMAND ${KERF} run ${SCENE} --out ${OUT} --quiet
   RESULT_VARIABLE code ERROR_VARIABLE stderr OUTPUT_VARIABLE stdout TIMEOUT 120)
 if(NOT code MATCHES "^[12]$")
