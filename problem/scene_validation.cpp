@@ -366,13 +366,15 @@ void validate(const Scene& scene) {
                   to_string(meshless.gradient) + "', vci '" + to_string(meshless.vci) +
                   "': split cells are built for direct nodal integration without VCI; expected cut_cells: auto or "
                   "whole, or method: nodal with gradient: direct and vci: none");
-  if (meshless.background_cells == BackgroundCells::lattice)
+  if (meshless.background_cells == BackgroundCells::lattice) {
+    const char* why = !scene.box ? "a mesh file (the background is its mesh)"
+                      : meshless.nodes == NodePlacement::mesh
+                          ? "nodes: mesh (the background is their mesh)"
+                          : "refine regions (the refined lattices' cells would not meet)";
     r.require(lattice_cells_possible(scene), "discretization.meshless.background_cells",
-              std::string("value 'lattice' with ") +
-                  (!scene.box ? "a mesh file (the background is its mesh)"
-                   : meshless.nodes == NodePlacement::mesh ? "nodes: mesh (the background is their mesh)"
-                                                           : "refine regions (the refined lattices' cells would not meet)") +
+              std::string("value 'lattice' with ") + why +
                   "; expected background_cells: auto or mesh, or nodes: lattice in a box without refine");
+  }
   r.in_range(scene.output.vtk_every >= 0, "output.vtk.every", scene.output.vtk_every, "every >= 0 (steps; 0: none)");
   for (std::size_t i = 0; i < scene.output.probes.size(); ++i) validate_probe(r, scene, i);
 }

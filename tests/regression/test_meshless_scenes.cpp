@@ -65,6 +65,12 @@ TEST(MeshlessScenes, PlateInTensionPatchTest) {
       {"efg nitsche symmetric degree 5",
        {"discretization.method=efg", "discretization.meshless.quadrature.rule=symmetric"}, 2e-4},
       {"efg penalty order 2", {"discretization.method=efg", "discretization.meshless.essential=penalty"}, 1e-3},
+      // The cases above integrate on the lattice's own cells (background_cells: auto); these on gmsh's.
+      {"efg nitsche order 2, gmsh's cells",
+       {"discretization.method=efg", "discretization.meshless.background_cells=mesh"}, 1e-3},
+      {"efg nitsche symmetric degree 5, gmsh's cells",
+       {"discretization.method=efg", "discretization.meshless.quadrature.rule=symmetric",
+        "discretization.meshless.background_cells=mesh"}, 2e-4},
       {"nodal", {"discretization.method=nodal", "solve.analysis=static"}, 1e-2},
       {"nodal smoothed",
        {"discretization.method=nodal", "solve.analysis=static", "discretization.meshless.gradient=smoothed"},

@@ -155,7 +155,8 @@ TEST(SceneReader, BackgroundCellsAreTheLatticesOwnUncutAndUntouchedAndLatticeIsR
         testing::scene_from_text(box + "discretization: {method: efg, meshless: {" + meshless + "}}\n" + cut));
   };
   EXPECT_EQ(with_cut(""), BackgroundCells::mesh);
-  const std::string sphere = "contact: [{sphere: {center: [0.5, 0.5, 1.2], radius: 0.3}, displacement: [0, 0, -0.1]}]\n";
+  const std::string sphere =
+      "contact: [{sphere: {center: [0.5, 0.5, 1.2], radius: 0.3}, displacement: [0, 0, -0.1]}]\n";
   EXPECT_EQ(background_cells_of(testing::scene_from_text(box + "discretization: {method: efg}\n" + sphere)),
             BackgroundCells::mesh);
   EXPECT_EQ(with_cut("background_cells: lattice"), BackgroundCells::lattice);
