@@ -269,10 +269,10 @@ inline bool lattice_cells_possible(const Scene& scene) {
 /// cut's cells are integrated as they stand, so EFG's answer there depends on
 /// how they meet it, and a lattice's planes meet a planar cut all alike (the
 /// cut block at 3 mm sagged 5.1% over the reference on lattice cells against
-/// 3.1% under on gmsh's, whose figures the cut studies hold). A sphere's
-/// samples on a lattice's faces lie in rings that touch all at once (a
-/// force-driven sphere settled 2.4e-3 off the depth against 2.6e-4 on
-/// gmsh's). docs/scenes.md has the figures.
+/// 3.1% under on gmsh's, whose figures the cut studies hold). With a sphere
+/// a force-driven one settled 2.4e-3 off the depth against 2.6e-4 on gmsh's
+/// (its samples on a lattice's faces lie in rings, most likely touching all
+/// at once). docs/scenes.md has the figures.
 inline BackgroundCells background_cells_of(const Scene& scene) {
   const BackgroundCells asked = scene.discretization.meshless.background_cells;
   if (asked != BackgroundCells::automatic) return asked;
