@@ -182,11 +182,12 @@ MeshCounts mesh_counts(const Scene& scene, double size, int order) {
   return m;
 }
 
-/// Points of a lattice at `spacing` over the box, faces included.
+/// Points of a lattice at `spacing` over the box, faces included (as node_set.cpp lays them).
 double lattice_points(const Box& box, double spacing, int d) {
-  double n = 1.0;
-  for (int i = 0; i < d; ++i) n *= std::floor((box.max[i] - box.min[i]) / spacing + 1e-9) + 1.0;
-  return n;
+  const std::array<int, 3> n = lattice_intervals(d, box.min, box.max, spacing);
+  double points = 1.0;
+  for (int i = 0; i < d; ++i) points *= n[i] + 1.0;
+  return points;
 }
 
 /// Nodes of the lattice at `spacing` with each refine box's own lattice
@@ -221,9 +222,8 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const BodyPlan plan = body_plan(scene);
   MeshCounts mesh;
   if (plan.mesh.lattice) {
-    const std::array<int, 3> n = lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size);
-    mesh.cells = lattice_cell_count(d, n);
-    mesh.nodes = (n[0] + 1.0) * (n[1] + 1.0) * (d == 3 ? n[2] + 1.0 : 1.0);
+    mesh.cells = lattice_cell_count(d, lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size));
+    mesh.nodes = lattice_points(*scene.box, plan.mesh.size, d);
   } else if (plan.mesh.made) {
     mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
   }

@@ -50,9 +50,10 @@ Mesh lattice_cells(int dim, const Vec3& min, const Vec3& max, double spacing) {
   for (int i = 0; i <= count[0]; ++i)
     for (int j = 0; j <= count[1]; ++j)
       for (int k = 0; k <= nz; ++k) {
+        // Where lattice_nodes puts them, to the bit: min + index * (length / intervals).
         Vec3 p = Vec3::Zero();
         const int index[3] = {i, j, k};
-        for (int a = 0; a < dim; ++a) p[a] = min[a] + (max[a] - min[a]) * index[a] / count[a];
+        for (int a = 0; a < dim; ++a) p[a] = min[a] + index[a] * ((max[a] - min[a]) / count[a]);
         mesh.nodes.push_back(p);
       }
   for (int i = 0; i < count[0]; ++i)

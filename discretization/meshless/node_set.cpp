@@ -7,19 +7,16 @@
 #include "core/check.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/delaunay_mesh.h"
+#include "geometry/lattice_cells.h"
 
 namespace kerf {
 namespace {
 
-/// Lattice points of a box: per axis, round(length / spacing) intervals.
+/// Lattice points of a box: per axis, round(length / spacing) intervals (lattice_intervals).
 void add_lattice(int dim, const Box& box, double spacing, std::vector<Vec3>& out, std::vector<double>& local) {
-  int count[3] = {0, 0, 0};
+  const std::array<int, 3> count = lattice_intervals(dim, box.min, box.max, spacing);
   double step[3] = {0, 0, 0};
-  for (int a = 0; a < dim; ++a) {
-    double length = box.max[a] - box.min[a];
-    count[a] = std::max(1, static_cast<int>(std::lround(length / spacing)));
-    step[a] = length / count[a];
-  }
+  for (int a = 0; a < dim; ++a) step[a] = (box.max[a] - box.min[a]) / count[a];
   const double mean_step = dim == 3 ? std::cbrt(step[0] * step[1] * step[2]) : std::sqrt(step[0] * step[1]);
   for (int i = 0; i <= count[0]; ++i)
     for (int j = 0; j <= count[1]; ++j)

@@ -74,12 +74,11 @@ void expect_cells_fill_the_box_face_to_face(int dim, const Vec3& min, const Vec3
   EXPECT_EQ(boundary, expected);
   EXPECT_EQ(boundary_facets(mesh).count(), expected);
 
-  // The same points as the meshless lattice's nodes.
+  // The same points as the meshless lattice's nodes, to the bit.
   const NodeSet lattice = lattice_nodes(dim, Box{min, max}, spacing, {}, 2.2);
   ASSERT_EQ(lattice.size(), mesh.node_count());
-  auto key = [](const Vec3& p) { return std::array<long long, 3>{std::llround(p.x() * 1e9), std::llround(p.y() * 1e9),
-                                                                  std::llround(p.z() * 1e9)}; };
-  std::set<std::array<long long, 3>> nodes;
+  auto key = [](const Vec3& p) { return std::array<double, 3>{p.x(), p.y(), p.z()}; };
+  std::set<std::array<double, 3>> nodes;
   for (const Vec3& p : lattice.positions) nodes.insert(key(p));
   for (const Vec3& p : mesh.nodes) EXPECT_TRUE(nodes.count(key(p))) << p.transpose();
 }
