@@ -6,6 +6,8 @@
 //   build/tests/kerf_benchmarks --benchmark_filter='Nodal|Triad'
 #include <benchmark/benchmark.h>
 
+#include <unistd.h>
+
 #include <cstring>
 #include <string>
 #include <vector>
@@ -20,6 +22,21 @@ bool asked_for(int argc, char** argv, const char* flag) {
   for (int i = 1; i < argc; ++i)
     if (std::strncmp(argv[i], flag, std::strlen(flag)) == 0) return true;
   return false;
+}
+
+/// The console's options as Google Benchmark takes them for a reporter of its
+/// own (one passed in keeps its constructor's, colour even into a file):
+/// colour on a terminal, unless --benchmark_color says otherwise.
+benchmark::ConsoleReporter::OutputOptions console_options(int argc, char** argv) {
+  bool color = isatty(STDOUT_FILENO);
+  const std::string flag = "--benchmark_color=";
+  for (int i = 1; i < argc; ++i)
+    if (std::strncmp(argv[i], flag.c_str(), flag.size()) == 0) {
+      const std::string value = argv[i] + flag.size();
+      if (value != "auto") color = value == "true" || value == "yes" || value == "1";
+    }
+  using Options = benchmark::ConsoleReporter::OutputOptions;
+  return static_cast<Options>(Options::OO_Tabular | (color ? Options::OO_Color : Options::OO_None));
 }
 
 }  // namespace
@@ -38,7 +55,7 @@ int main(int argc, char** argv) {
   args.push_back(nullptr);
   benchmark::Initialize(&count, args.data());
   if (benchmark::ReportUnrecognizedArguments(count, args.data())) return 1;
-  kerf::bench::FloorReporter reporter;
+  kerf::bench::FloorReporter reporter(console_options(argc, argv));
   benchmark::RunSpecifiedBenchmarks(&reporter);
   benchmark::Shutdown();
   return 0;

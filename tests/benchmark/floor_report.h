@@ -23,6 +23,7 @@ void use_bandwidth_of(const std::string& triad, const std::string& label);
 
 class FloorReporter : public benchmark::ConsoleReporter {
  public:
+  explicit FloorReporter(OutputOptions options) : ConsoleReporter(options) {}
   void ReportRuns(const std::vector<Run>& runs) override;
   void Finalize() override;
 
