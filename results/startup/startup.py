@@ -19,13 +19,16 @@ usage (source tree, idle machine):
   git worktree add /tmp/before b2674c3 && cmake -S /tmp/before -B /tmp/before/build && \
   cmake --build /tmp/before/build --target kerf -j 2
   results/startup/startup.py build /tmp/before/build [repeats] > results/startup/startup.md
+  results/startup/startup.py build - [repeats]: this build alone (the "before" column left empty)
 (startup_84b08a3.md: the same with /tmp/before84 at 84b08a3.)"""
 import json, os, statistics, subprocess, sys, tempfile, time
 
-build, before_build = sys.argv[1:3]
+build = sys.argv[1]
+before_build = sys.argv[2] if len(sys.argv) > 2 and sys.argv[2] != "-" else None  # "-": this build alone
 repeats = int(sys.argv[3]) if len(sys.argv) > 3 else 21
 here = os.path.dirname(os.path.abspath(__file__))
-kerf, kerf_before = f"{build}/cli/kerf", f"{before_build}/cli/kerf"
+kerf = f"{build}/cli/kerf"
+kerf_before = f"{before_build}/cli/kerf" if before_build else None
 plate = f"{here}/../../scenes/plate_tension_2d.yaml"
 hanging = f"{here}/../../tests/startup/plate_gravity_2d.yaml"
 meshes = tempfile.mkdtemp()
@@ -58,8 +61,8 @@ cases = [
     ("kerf check (the plate)", [kerf, "check", plate], False),
     ("2D static nodal, hanging, no output but probes", [kerf, "run", hanging, "--quiet"], True),
     ("2D static nodal, hanging, ParaView output", [kerf, "run", hanging, "--quiet", "--set", "output.vtk=true"], True),
-    ("2D static nodal, pulled (gmsh: boundary cells)", [kerf, "run", plate, "--quiet"] + nodal + no_vtk, True),
-    ("2D static FEM tri6, pulled (gmsh)", [kerf, "run", plate, "--quiet"] + fem + no_vtk, True),
+    ("2D static nodal, pulled (its boundary cells: the lattice's)", [kerf, "run", plate, "--quiet"] + nodal + no_vtk, True),
+    ("2D static FEM tri6, pulled (gmsh meshes the box)", [kerf, "run", plate, "--quiet"] + fem + no_vtk, True),
     ("2D static FEM tri6, pulled, the plate's .msh file", [kerf, "run", plate_file, "--quiet"] + no_vtk, True),
     ("3D static FEM tet4, the organ's .msh file", [kerf, "run", organ_file, "--quiet", "--set",
                                                    "discretization.method=fem"] + no_vtk, True),
@@ -88,7 +91,7 @@ print("| process | now: median (min) ms | before: median (min) ms | nodes | modu
 print("|---|---|---|---|---|")
 for label, command, runs in cases:
     now, summary = measure(command, runs)
-    before, _ = measure([kerf_before] + command[1:], runs) if command[0] == kerf else (None, None)
+    before, _ = measure([kerf_before] + command[1:], runs) if kerf_before and command[0] == kerf else (None, None)
     nodes = summary["counts"]["nodes"] if summary else ""
     modules = ", ".join(f"{name} {m['load_ms']:.0f} ({m['libraries']})"
                         for name, m in summary["timing"]["modules"].items()) if summary else ""
