@@ -10,9 +10,11 @@
 //   ranks on it. OMP_THREAD_LIMIT caps CHOLMOD, whose regions ask a fixed 4
 //   threads; OpenBLAS (Debian's OpenMP build) follows OpenMP's count.
 // - Waiting: passive (threads sleep at once at a barrier). libgomp's default
-//   spins about 3 ms first: beside one CPU-bound process a 2-thread implicit
-//   step took 5 times its idle time, spinning threads holding the core the
-//   preempted one needed (results/threads).
+//   spins 300 000 times first (7 ms here): beside one CPU-bound process a
+//   2-thread implicit step took 5 times its idle time, spinning threads
+//   holding the core the preempted one needed. Idle, passive costs CHOLMOD's
+//   factorization 2.8x; GOMP_SPINCOUNT=1000, if the user sets it, gives that
+//   back (results/scaling.md, "Threads beside another process").
 // A variable the user set is left alone; KERF_THREAD_POLICY=off leaves all.
 // The variables kerf set are recorded in KERF_THREAD_POLICY with the
 // process id, so that a kerf started by this one (a study's point, mpirun's
@@ -97,7 +99,7 @@ inline CoreBudget cores_given() {
 inline std::string wait_policy_in_effect() {
   if (const char* wait = std::getenv("OMP_WAIT_POLICY")) return wait;
   if (const char* spin = std::getenv("GOMP_SPINCOUNT")) return std::string("spin count ") + spin;
-  return "libgomp default (spins about 3 ms, then sleeps)";
+  return "libgomp default (spins 300 000 times, then sleeps)";
 }
 /// A field of KERF_THREAD_POLICY ("limited_by"), or "" when kerf did not choose.
 inline std::string thread_policy_field(const std::string& field) {

@@ -1,7 +1,8 @@
 #!/usr/bin/python3
 """Implicit steps idle and beside one CPU-bound process, with kerf's thread
-policy (now) and as before it (libgomp's default spinning wait, threads
-capped at the cores): the soft block's neo-Hookean FEM step (1,308 nodes) from
+policy (now), as before it (libgomp's default spinning wait, threads
+capped at the cores), and with a short spin the user may set (GOMP_SPINCOUNT
+1 000, 10 000, 30 000, which kerf keeps): the soft block's neo-Hookean FEM step (1,308 nodes) from
 `kerf run`, and the benchmark's corotational step (6,786 nodes) beside its
 floor, a bare CHOLMOD factorization of the same matrix in the same run.
 Interleaved repetitions; medians. usage (from the source tree, idle machine):
@@ -11,7 +12,10 @@ import json, os, subprocess, sys, tempfile, statistics
 build = sys.argv[1]
 reps = int(sys.argv[2]) if len(sys.argv) > 2 else 3
 here = os.path.dirname(os.path.abspath(__file__))
-variants = {"before": {"KERF_THREAD_POLICY": "off", "OMP_THREAD_LIMIT": str(os.cpu_count())}, "now": {}}
+variants = {"before": {"KERF_THREAD_POLICY": "off", "OMP_THREAD_LIMIT": str(os.cpu_count())}, "now": {},
+            # a short spin before sleeping (libgomp spins GOMP_SPINCOUNT pause instructions; the default is 300 000)
+            "spin 1000": {"GOMP_SPINCOUNT": "1000"}, "spin 10000": {"GOMP_SPINCOUNT": "10000"},
+            "spin 30000": {"GOMP_SPINCOUNT": "30000"}}
 
 
 def environment(extra):
