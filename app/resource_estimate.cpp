@@ -222,8 +222,10 @@ void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const BodyPlan plan = body_plan(scene);
   MeshCounts mesh;
   if (plan.mesh.lattice) {
-    mesh.cells = lattice_cell_count(d, lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size));
-    mesh.nodes = lattice_points(*scene.box, plan.mesh.size, d);
+    const std::array<int, 3> intervals = lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size);
+    mesh.cells = lattice_cell_count(d, intervals);
+    mesh.nodes = lattice_points(*scene.box, plan.mesh.size, d) +
+                 (plan.mesh.order == 2 ? lattice_edge_count(d, intervals) : 0.0);
   } else if (plan.mesh.made) {
     mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
   }

@@ -14,6 +14,7 @@
 #include "geometry/lattice_cells.h"
 #include "geometry/mesh_from_first_rank.h"
 #include "geometry/mesh_ordering.h"
+#include "geometry/mid_edge_nodes.h"
 #include "geometry/msh_reader.h"
 #include "problem/body_plan.h"
 
@@ -21,10 +22,16 @@ namespace kerf {
 namespace {
 
 /// The mesh of the scene's box (gmsh at `size`, of cells of `order`,
-/// conforming to and opened along `cuts`), or its mesh file as it stands,
-/// made by this process.
-Mesh scene_mesh(const Scene& scene, int order, double size, std::vector<CutPiece> cuts = {}) {
+/// conforming to and opened along `cuts`; or the box's lattice at `size`
+/// split into cells, `lattice`), or its mesh file as it stands, made by this process.
+Mesh scene_mesh(const Scene& scene, int order, double size, bool lattice, std::vector<CutPiece> cuts = {}) {
   if (!scene.box) return read_msh(scene.mesh_file, scene.dimension);
+  if (lattice) {
+    KERF_CHECK(cuts.empty(), "discretization.fem.box_mesher: value 'lattice' cannot mesh the box anew along a cut "
+                             "(fem: remesh); expected box_mesher: gmsh");
+    Mesh cells = lattice_cells(scene.dimension, scene.box->min, scene.box->max, size);
+    return order == 2 ? with_mid_edge_nodes(cells) : cells;
+  }
   BoxMeshRequest request;
   request.cuts = std::move(cuts);
   request.dimension = scene.dimension;
@@ -45,7 +52,7 @@ Mesh fem_mesh(const Scene& scene, std::vector<CutPiece> cuts, RunReport& report)
   const ElementType element = scene.discretization.fem.element;
   const MeshPlan plan = body_plan(scene).mesh;
   const int order = plan.order;
-  if (scene.box) return scene_mesh(scene, order, plan.size, std::move(cuts));
+  if (scene.box) return scene_mesh(scene, order, plan.size, plan.lattice, std::move(cuts));
   int file_order = order;
   Mesh mesh = read_msh(scene.mesh_file, scene.dimension, order == 2 ? MshOrder::second : MshOrder::as_in_file,
                        &file_order);
@@ -102,10 +109,10 @@ std::unique_ptr<DiscreteBody> make_meshless_body(const MpiContext& mpi, const Sc
   std::optional<Mesh> background;
   if (plan.mesh.made) {
     // The lattice's own cells are the same on every rank; gmsh's mesh is made once, on the first.
-    background = plan.mesh.lattice
-                     ? lattice_cells(scene.dimension, scene.box->min, scene.box->max, plan.mesh.size)
-                     : corner_mesh(mesh_from_first_rank(
-                           mpi, [&] { return scene_mesh(scene, plan.mesh.order, plan.mesh.size); }));
+    const MeshPlan& m = plan.mesh;
+    background = m.lattice ? scene_mesh(scene, 1, m.size, true)
+                           : corner_mesh(mesh_from_first_rank(
+                                 mpi, [&] { return scene_mesh(scene, m.order, m.size, false); }));
     order_for_locality(*background);
     report.add_stage("mesh");
   }

@@ -38,6 +38,13 @@ double lattice_cell_count(int dim, const std::array<int, 3>& intervals) {
   return dim == 3 ? 5.0 * intervals[0] * intervals[1] * intervals[2] : 2.0 * intervals[0] * intervals[1];
 }
 
+double lattice_edge_count(int dim, const std::array<int, 3>& intervals) {
+  const double x = intervals[0], y = intervals[1], z = dim == 3 ? intervals[2] : 0;
+  const double along = x * (y + 1) * (z + 1) + (x + 1) * y * (z + 1) + (x + 1) * (y + 1) * z;
+  const double squares = x * y * (z + 1) + x * (y + 1) * z + (x + 1) * y * z;
+  return along + squares;
+}
+
 Mesh lattice_cells(int dim, const Vec3& min, const Vec3& max, double spacing) {
   KERF_CHECK(dim == 2 || dim == 3, "lattice cells: dimension ", dim, ", expected 2 or 3");
   KERF_CHECK(spacing > 0.0, "lattice cells: spacing ", spacing, ", expected > 0");

@@ -15,6 +15,10 @@ std::array<int, 3> lattice_intervals(int dim, const Vec3& min, const Vec3& max, 
 /// How many cells lattice_cells makes: 5 a cube, 2 a square.
 double lattice_cell_count(int dim, const std::array<int, 3>& intervals);
 
+/// How many edges its cells have: the lattice's own, and one diagonal on
+/// each square (no cube's diagonal is an edge): the mid-edge nodes of second order.
+double lattice_edge_count(int dim, const std::array<int, 3>& intervals);
+
 /// The lattice of the box [min, max] at `spacing`: round(length / spacing) intervals an axis
 /// (at least one), as lattice_nodes places its nodes. Each square is split
 /// into 2 triangles and each cube into 5 tetrahedra: a central one on the

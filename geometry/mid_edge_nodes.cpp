@@ -35,4 +35,20 @@ std::vector<std::size_t> add_mid_edge_nodes(int dimension, std::span<const std::
   return raised;
 }
 
+Mesh with_mid_edge_nodes(const Mesh& linear) {
+  KERF_CHECK(linear.order == 1, "internal: a mesh of order ", linear.order, " raised to second order");
+  std::vector<double> coordinates;
+  coordinates.reserve(3 * linear.nodes.size());
+  for (const Vec3& p : linear.nodes) coordinates.insert(coordinates.end(), {p.x(), p.y(), p.z()});
+  const std::vector<std::size_t> corners(linear.cells.begin(), linear.cells.end());
+  const std::vector<std::size_t> cells = add_mid_edge_nodes(linear.dimension, corners, coordinates);
+  Mesh raised;
+  raised.dimension = linear.dimension;
+  raised.order = 2;
+  for (std::size_t n = 0; n < coordinates.size(); n += 3)
+    raised.nodes.emplace_back(coordinates[n], coordinates[n + 1], coordinates[n + 2]);
+  raised.cells.assign(cells.begin(), cells.end());
+  return raised;
+}
+
 }  // namespace kerf

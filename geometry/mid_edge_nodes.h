@@ -5,6 +5,8 @@
 #include <span>
 #include <vector>
 
+#include "geometry/mesh.h"
+
 namespace kerf {
 
 /// The quadratic cells of `linear_cells` (positions into `coordinates`, x y z
@@ -12,5 +14,8 @@ namespace kerf {
 /// order (core/element_types.h), appended to `coordinates` once an edge.
 std::vector<std::size_t> add_mid_edge_nodes(int dimension, std::span<const std::size_t> linear_cells,
                                             std::vector<double>& coordinates);
+
+/// `linear` (order 1) raised the same way: its nodes, then the mid-edge ones.
+Mesh with_mid_edge_nodes(const Mesh& linear);
 
 }  // namespace kerf

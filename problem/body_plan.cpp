@@ -50,7 +50,8 @@ BodyPlan body_plan(const Scene& scene) {
   plan.nodes_on_mesh = plan.method->meshless && (d.meshless.nodes == NodePlacement::mesh || !scene.box);
   if (!plan.method->meshless || plan.nodes_on_mesh) {
     // The element's mesh at FEM's size: FEM's cells, or the meshless nodes at its corners.
-    plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size};
+    plan.mesh = {true, element_descriptor(d.fem.element).order, d.fem.size,
+                 scene.box && d.fem.box_mesher == FemBoxMesher::lattice};
     plan.size_key = "discretization.fem.size", plan.size = d.fem.size;
     plan.whole_on_every_rank = whole_on_every_rank(scene);
     return plan;

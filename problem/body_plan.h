@@ -15,7 +15,8 @@ struct MeshPlan {
   bool made = false;  // is there a mesh at all (a meshless body on a lattice may have none)
   int order = 1;      // its cells' order
   double size = 0.0;  // gmsh's target edge length (m) in a box
-  bool lattice = false;  // the cells of the node lattice, made by kerf (no gmsh; meshless.background_cells)
+  // The box's lattice at `size` split into cells by kerf, no gmsh (meshless.background_cells, fem.box_mesher).
+  bool lattice = false;
 };
 
 struct BodyPlan {

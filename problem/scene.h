@@ -47,6 +47,11 @@ enum class CutCells { automatic, whole, split };
 /// mesh of the box at the spacing, or the mesh the nodes come from;
 /// automatic: lattice where it can be, uncut and untouched (background_cells_of).
 enum class BackgroundCells { automatic, lattice, mesh };
+/// fem in a box: who meshes it. `gmsh` (unstructured, edges near fem.size),
+/// or `lattice`: the box's lattice at fem.size split into simplices as the
+/// meshless background cells are (geometry/lattice_cells.h), mid-edge nodes
+/// added for second order; no mesher loaded.
+enum class FemBoxMesher { gmsh, lattice };
 enum class Analysis { static_analysis, dynamic };
 enum class Integrator { implicit_euler, newmark, central_difference };
 enum class MassKind { lumped, consistent };
@@ -96,6 +101,7 @@ struct FemOptions {
   /// lie on it (no sliver thinner than about that); 0: the cut exactly as
   /// given, no node moved and no fragment dropped however thin.
   double split_snap = 0.05;
+  FemBoxMesher box_mesher = FemBoxMesher::gmsh;
 };
 
 struct MeshlessOptions {
@@ -301,6 +307,7 @@ KERF_ENUM_NAMES(VciOrder, "none", "linear");
 KERF_ENUM_NAMES(NodalStabilization, "none", "hourglass", "nsni");
 KERF_ENUM_NAMES(CutCells, "auto", "whole", "split");
 KERF_ENUM_NAMES(BackgroundCells, "auto", "lattice", "mesh");
+KERF_ENUM_NAMES(FemBoxMesher, "gmsh", "lattice");
 KERF_ENUM_NAMES(Analysis, "static", "dynamic");
 KERF_ENUM_NAMES(Integrator, "implicit-euler", "newmark", "central-difference");
 KERF_ENUM_NAMES(MassKind, "lumped", "consistent");

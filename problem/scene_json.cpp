@@ -89,7 +89,7 @@ json scene_to_json(const Scene& s) {
       {"method", to_string(d.method)},
       {"fem", {{"element", to_string(d.fem.element)}, {"size", d.fem.size}, {"volumetric", to_string(d.fem.volumetric)},
                {"split_front", to_string(d.fem.split_front)},
-               {"split_snap", d.fem.split_snap}}},
+               {"split_snap", d.fem.split_snap}, {"box_mesher", to_string(d.fem.box_mesher)}}},
       {"refine", refine},
       {"meshless",
        {{"nodes", to_string(ml.nodes)},

@@ -155,13 +155,14 @@ void read_discretization(const YamlField& f, int dim, DiscretizationOptions& d) 
   if (f.has("method")) d.method = f["method"].enumeration<Method>();
   if (f.has("fem")) {
     YamlField fe = f["fem"];
-    fe.allow_only({"element", "size", "volumetric", "split_front", "split_snap"});
+    fe.allow_only({"element", "size", "volumetric", "split_front", "split_snap", "box_mesher"});
     if (fe.has("element"))
       d.fem.element = fe["element"].enumeration<ElementType>();
     if (fe.has("size")) d.fem.size = fe["size"].number();
     if (fe.has("volumetric")) d.fem.volumetric = fe["volumetric"].enumeration<FemVolumetric>();
     if (fe.has("split_front")) d.fem.split_front = fe["split_front"].enumeration<SplitFront>();
     if (fe.has("split_snap")) d.fem.split_snap = fe["split_snap"].number();
+    if (fe.has("box_mesher")) d.fem.box_mesher = fe["box_mesher"].enumeration<FemBoxMesher>();
   }
   if (f.has("refine")) {
     YamlField list = f["refine"];

@@ -71,6 +71,11 @@ TEST_P(ResourceEstimate, MatchesTheRunsCountsAndPeakMemory) {
     const double cells = estimate["mesh_cells"], actual = static_cast<double>(counts["elements"]) / points_per_element;
     EXPECT_NEAR(cells / actual, 1.0, 0.2) << cells << " cells estimated, " << actual << " meshed";
   }
+  // FEM on kerf's own lattice cells (fem.box_mesher: lattice): counted exactly, mid-edge nodes too.
+  if (method == "fem" && ran.summary["scene"]["discretization"]["fem"]["box_mesher"] == "lattice") {
+    EXPECT_EQ(nodes, actual_nodes);
+    EXPECT_EQ(static_cast<double>(estimate["mesh_cells"]), static_cast<double>(counts["elements"]));
+  }
 #if defined(__SANITIZE_ADDRESS__)
   return;  // make check-sanitize: ASan's shadow memory and quarantine double the peak; the estimate is the release build's
 #endif
@@ -106,6 +111,9 @@ INSTANTIATE_TEST_SUITE_P(
                      {"discretization.method=nodal", "discretization.meshless.spacing=0.0012", "solve.analysis=dynamic",
                       "solve.integrator=central-difference", "solve.dt=0.00001", "solve.duration=0.00002"}},
         EstimateCase{"tri6", plate, {"discretization.fem.size=0.001"}},
+        EstimateCase{"tet10_lattice", cantilever,
+                     {"discretization.fem.size=0.003", "discretization.fem.box_mesher=lattice"}},
+        EstimateCase{"tri6_lattice", plate, {"discretization.fem.size=0.001", "discretization.fem.box_mesher=lattice"}},
         EstimateCase{"nodal_2d", plate, {"discretization.method=nodal", "discretization.meshless.spacing=0.001"}},
         EstimateCase{"graded_tet4", hertz, {"discretization.method=fem"}},
         EstimateCase{"graded_efg_on_mesh_nodes", hertz, {}},

@@ -25,6 +25,7 @@ cases = [  # the scene, what the run asks, and the modules it must have loaded
      ["discretization.method=nodal", "discretization.meshless.background_cells=mesh", "output.vtk=false"], {"gmsh"}),
     ("efg", pulled, ["discretization.method=efg", "output.vtk=false"], set()),
     ("fem", pulled, ["output.vtk=false"], {"gmsh"}),
+    ("fem_lattice", pulled, ["output.vtk=false", "discretization.fem.box_mesher=lattice"], set()),  # kerf's own cells
     ("fem_mesh_file", f"{scenes}/cube_from_mesh.yaml", ["output.vtk=false"], set()),  # MSH 4.1, read by kerf itself
     ("fem_petsc", pulled, ["output.vtk=false", "solve.linear_solver=petsc"], {"gmsh", "petsc"}),
 ]

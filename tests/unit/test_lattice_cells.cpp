@@ -7,10 +7,12 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 
 #include "discretization/meshless/node_set.h"
 #include "geometry/boundary_facets.h"
 #include "geometry/lattice_cells.h"
+#include "geometry/mid_edge_nodes.h"
 
 namespace kerf {
 namespace {
@@ -93,6 +95,32 @@ TEST(LatticeCells, FillAnUnevenBoxFaceToFaceOnTheMeshlessLattice) {
 TEST(LatticeCells, AThinBoxKeepsOneLayer) {
   // Thinner than the spacing along z: one interval there (as lattice_nodes places its nodes).
   expect_cells_fill_the_box_face_to_face(3, Vec3(0.0, 0.0, 0.0), Vec3(0.05, 0.02, 0.001), 0.005);
+}
+
+TEST(LatticeCells, RaisedToSecondOrderTheyHaveOneMidEdgeNodeAnEdgeAsTheEstimateCounts) {
+  // fem.box_mesher: lattice with tet10 or tri6: a node at the middle of each of the cells' edges, once.
+  for (const auto& [dim, max, spacing] : {std::tuple<int, Vec3, double>{3, Vec3(0.1, 0.03, 0.02), 0.007},
+                                          {3, Vec3(0.05, 0.02, 0.001), 0.005},
+                                          {2, Vec3(0.05, 0.03, 0.0), 0.004}}) {
+    const Mesh linear = lattice_cells(dim, Vec3::Zero(), max, spacing);
+    const Mesh raised = with_mid_edge_nodes(linear);
+    const std::array<int, 3> n = lattice_intervals(dim, Vec3::Zero(), max, spacing);
+    EXPECT_EQ(raised.order, 2);
+    ASSERT_EQ(raised.cell_count(), linear.cell_count());
+    std::set<std::pair<Index, Index>> edges;
+    const auto pairs = mid_edge_corners(dim);
+    for (Index c = 0; c < raised.cell_count(); ++c) {
+      auto cell = raised.cell(c), corners = linear.cell(c);
+      for (int k = 0; k <= dim; ++k) ASSERT_EQ(cell[k], corners[k]);
+      for (std::size_t e = 0; e < pairs.size(); ++e) {
+        const Index a = cell[pairs[e][0]], b = cell[pairs[e][1]], middle = cell[dim + 1 + e];
+        EXPECT_LT((raised.nodes[middle] - 0.5 * (raised.nodes[a] + raised.nodes[b])).norm(), 1e-15);
+        edges.insert({std::min(a, b), std::max(a, b)});
+      }
+    }
+    EXPECT_EQ(static_cast<double>(edges.size()), lattice_edge_count(dim, n));
+    EXPECT_EQ(raised.node_count(), linear.node_count() + static_cast<Index>(lattice_edge_count(dim, n)));
+  }
 }
 
 }  // namespace

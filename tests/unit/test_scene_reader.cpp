@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "core/check.h"
+#include "problem/body_plan.h"
 #include "problem/scene_json.h"
 #include "problem/scene_validation.h"
 #include "support/test_support.h"
@@ -174,6 +175,30 @@ TEST(SceneReader, BackgroundCellsAreTheLatticesOwnUncutAndUntouchedAndLatticeIsR
   expect_contains(m, "test.yaml:2:");
   expect_contains(m, "'cubes'");
   expect_contains(m, "lattice");
+}
+
+TEST(SceneReader, FemBoxMesherIsGmshUnlessAskedAndLatticeIsRefusedWhereItCannotMeshTheBody) {
+  const std::string box = "domain: {box: {min: [0,0,0], max: [1,1,1]}}\n";
+  EXPECT_EQ(testing::scene_from_text(box).discretization.fem.box_mesher, FemBoxMesher::gmsh);
+  const Scene lattice = testing::scene_from_text(box + "discretization: {fem: {box_mesher: lattice}}\n");
+  EXPECT_EQ(lattice.discretization.fem.box_mesher, FemBoxMesher::lattice);
+  EXPECT_TRUE(body_plan(lattice).mesh.lattice);
+  EXPECT_FALSE(body_plan(testing::scene_from_text(box)).mesh.lattice);
+  // A cut that splits or removes cells keeps the lattice's mesh; one that remeshes is refused.
+  const std::string strip = "{strip: [[0.5,-1,2], [0.5,-1,0.5], [0.5,2,2], [0.5,2,0.5]]";
+  testing::scene_from_text(box + "discretization: {fem: {box_mesher: lattice}}\ncuts: [" + strip + ", fem: split}]\n");
+  const std::string refine = ", refine: [{box: {min: [0,0,0], max: [0.5,0.5,0.5]}, size: 0.001}]";
+  for (const auto& [rest, why] : {std::pair<std::string, std::string>{"}\ncuts: [" + strip + "}]\n", "fem: remesh"},
+                                  {refine + "}\n", "refine regions"}}) {
+    const std::string m = testing::scene_refusal(box + "discretization: {fem: {box_mesher: lattice}" + rest);
+    expect_contains(m, "discretization.fem.box_mesher");
+    expect_contains(m, "'lattice'");
+    expect_contains(m, why);
+  }
+  const std::string m = testing::scene_refusal(box + "discretization: {fem: {box_mesher: cubes}}\n");
+  expect_contains(m, "test.yaml:2:");
+  expect_contains(m, "'cubes'");
+  expect_contains(m, "gmsh | lattice");
 }
 
 TEST(SceneReader, EfgCellRulesTakeTheirKeysAndRefuseTheOtherRulesKey) {
