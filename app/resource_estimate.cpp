@@ -220,14 +220,15 @@ double points_per_cell(const ElementDescriptor& element) {
 void estimate_body(const Scene& scene, ResourceEstimate& e, double& coupled) {
   const int d = scene.dimension;
   const BodyPlan plan = body_plan(scene);
+  // A meshless body's nodes are the mesh's corners (corner_mesh), whatever the element's order.
+  const int order = plan.method->meshless ? 1 : plan.mesh.order;
   MeshCounts mesh;
   if (plan.mesh.lattice) {
     const std::array<int, 3> intervals = lattice_intervals(d, scene.box->min, scene.box->max, plan.mesh.size);
     mesh.cells = lattice_cell_count(d, intervals);
-    mesh.nodes = lattice_points(*scene.box, plan.mesh.size, d) +
-                 (plan.mesh.order == 2 ? lattice_edge_count(d, intervals) : 0.0);
+    mesh.nodes = lattice_points(*scene.box, plan.mesh.size, d) + (order == 2 ? lattice_edge_count(d, intervals) : 0.0);
   } else if (plan.mesh.made) {
-    mesh = mesh_counts(scene, plan.mesh.size, plan.mesh.order);
+    mesh = mesh_counts(scene, plan.mesh.size, order);
   }
   e.mesh_cells = mesh.cells, e.mesh_nodes = mesh.nodes;
   e.gmsh_meshes = plan.mesh.made && !plan.mesh.lattice;

@@ -101,6 +101,12 @@ INSTANTIATE_TEST_SUITE_P(
         EstimateCase{"tet10_p_multigrid", cantilever,
                      {"discretization.fem.size=0.0025", "solve.linear_solver=p_multigrid"}},
         EstimateCase{"efg", cantilever, {"discretization.method=efg", "discretization.meshless.spacing=0.004"}},
+        // The nodes of a tet10 mesh's corners (the cantilever's element): mid-edge nodes are no meshless nodes.
+        EstimateCase{"efg_on_tet10_mesh_nodes", cantilever,
+                     {"discretization.method=efg", "discretization.meshless.nodes=mesh"}},
+        EstimateCase{"efg_on_tet10_lattice_mesh_nodes", cantilever,
+                     {"discretization.method=efg", "discretization.meshless.nodes=mesh",
+                      "discretization.fem.box_mesher=lattice"}},
         EstimateCase{"nodal", cantilever, {"discretization.method=nodal", "discretization.meshless.spacing=0.0025"}},
         EstimateCase{"nodal_nsni", cantilever,
                      {"discretization.method=nodal", "discretization.meshless.spacing=0.0025",
