@@ -14,7 +14,7 @@ namespace kerf {
 struct MeshPlan {
   bool made = false;  // is there a mesh at all (a meshless body on a lattice may have none)
   int order = 1;      // its cells' order
-  double size = 0.0;  // gmsh's target edge length (m) in a box
+  double size = 0.0;  // in a box (m): gmsh's target edge length, or the lattice's spacing
   // The box's lattice at `size` split into cells by kerf, no gmsh (meshless.background_cells, fem.box_mesher).
   bool lattice = false;
 };

@@ -336,6 +336,22 @@ void validate_p_multigrid(const Refusal& r, const Scene& scene) {
                 "tet10 or tri6, or another linear_solver (cholmod, cg, petsc, ldlt)");
 }
 
+/// fem.box_mesher: lattice meshes a box of one spacing once: not a mesh
+/// file, refine regions, or a cut that gmsh meshes the body anew along.
+void validate_box_mesher(const Refusal& r, const Scene& scene) {
+  if (scene.discretization.fem.box_mesher != FemBoxMesher::lattice) return;
+  const bool remeshed = scene.discretization.method == Method::fem &&
+                        std::any_of(scene.cuts.begin(), scene.cuts.end(),
+                                    [](const Cut& cut) { return cut.fem == FemCut::remesh; });
+  const char* why = !scene.box ? "a mesh file (there is no box to mesh)"
+                    : !scene.discretization.refine.empty() ? "refine regions (a lattice has one spacing)"
+                    : remeshed ? "a cut with fem: remesh (gmsh meshes the body anew along it)"
+                               : nullptr;
+  r.require(!why, "discretization.fem.box_mesher",
+            std::string("value 'lattice' with ") + (why ? why : "") +
+                "; expected box_mesher: gmsh, or a box without refine regions or remeshed cuts");
+}
+
 }  // namespace
 
 void validate(const Scene& scene) {
@@ -375,18 +391,7 @@ void validate(const Scene& scene) {
               std::string("value 'lattice' with ") + why +
                   "; expected background_cells: auto or mesh, or nodes: lattice in a box without refine");
   }
-  if (scene.discretization.fem.box_mesher == FemBoxMesher::lattice) {
-    const bool remeshed = scene.discretization.method == Method::fem &&
-                          std::any_of(scene.cuts.begin(), scene.cuts.end(),
-                                      [](const Cut& cut) { return cut.fem == FemCut::remesh; });
-    const char* why = !scene.box                               ? "a mesh file (there is no box to mesh)"
-                      : !scene.discretization.refine.empty() ? "refine regions (a lattice has one spacing)"
-                      : remeshed ? "a cut with fem: remesh (gmsh meshes the body anew along it)"
-                                 : nullptr;
-    r.require(!why, "discretization.fem.box_mesher",
-              std::string("value 'lattice' with ") + (why ? why : "") +
-                  "; expected box_mesher: gmsh, or a box without refine regions or remeshed cuts");
-  }
+  validate_box_mesher(r, scene);
   r.in_range(scene.output.vtk_every >= 0, "output.vtk.every", scene.output.vtk_every, "every >= 0 (steps; 0: none)");
   for (std::size_t i = 0; i < scene.output.probes.size(); ++i) validate_probe(r, scene, i);
 }
