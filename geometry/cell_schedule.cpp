@@ -1,7 +1,10 @@
 #include "geometry/cell_schedule.h"
 
+#include <omp.h>
+
 #include <numeric>
 
+#include "core/threads_worth_waking.h"
 #include "geometry/cell_coloring.h"
 
 namespace kerf {
@@ -42,6 +45,7 @@ CellSchedule schedule_cells(const Mesh& mesh, int threads, Index begin, Index en
     s.banded = true;
     return s;
   }
+  s.threads = threads;
   // Banded: chunk c of 2T holds the range's cells [c n / 2T, (c + 1) n / 2T) in mesh order.
   auto chunks = split(0, end - begin, 2 * threads);
   s.phases.assign(2, {});
@@ -60,6 +64,15 @@ CellSchedule schedule_cells(const Mesh& mesh, int threads, Index begin, Index en
   }
   s.banded = false;
   return s;
+}
+
+CellSchedule schedule_cells_worth_threads(const Mesh& mesh, Index begin, Index end) {
+  const int threads = omp_get_max_threads();
+  if (end < 0) end = mesh.cell_count();
+  if (!worth_threads(end - begin)) return schedule_cells(mesh, 1, begin, end);
+  CellSchedule s = schedule_cells(mesh, threads, begin, end);
+  const Index share = (end - begin) / (static_cast<Index>(s.phases.size()) * threads);
+  return share >= items_worth_a_thread ? s : schedule_cells(mesh, 1, begin, end);
 }
 
 }  // namespace kerf

@@ -16,9 +16,15 @@ struct CellSchedule {
   std::vector<Index> cells;                                   // the scheduled cells, in schedule order
   std::vector<std::vector<std::pair<Index, Index>>> phases;   // [begin, end) ranges into `cells`
   bool banded = false;                                        // chunks (true) or colours (false)
+  int threads = 1;                                            // the threads it was made for
 };
 
 /// The cells [begin, end) (all by default: end < 0) scheduled for `threads`.
 CellSchedule schedule_cells(const Mesh& mesh, int threads, Index begin = 0, Index end = -1);
+
+/// The same for the threads kerf runs, or for one where a thread's share of a
+/// phase would be smaller than items_worth_a_thread (core/threads_worth_waking.h):
+/// small or finely coloured meshes then pay no wake-up a phase.
+CellSchedule schedule_cells_worth_threads(const Mesh& mesh, Index begin, Index end);
 
 }  // namespace kerf

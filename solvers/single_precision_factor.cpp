@@ -7,6 +7,7 @@
 #include <numeric>
 
 #include "core/parallel_failure.h"
+#include "core/threads_worth_waking.h"
 #include "solvers/float_kernels.h"
 
 namespace kerf {
@@ -144,7 +145,9 @@ void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   // top chain's rows into its own share; then the shares, then the chain. The
   // same sums in the same order on one thread or two: the same answer.
   ParallelFailure failure;  // Eigen's products (float_kernels.h) may allocate a temporary: nothing may leave a region
-#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
+  // An item of worth_threads a kibi-entry of the factor: about 0.6 us of a solve on one thread, as a cell's forces.
+  const bool parallel = worth_threads(static_cast<Index>(values_.size() / 1024));
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1) if (parallel)
   for (int p = 0; p < 2; ++p)
     failure.run([&] {
       std::fill(top_share_[p].begin(), top_share_[p].end(), 0.0f);
@@ -156,7 +159,7 @@ void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   for (Index s = top_first_supernode_; s < supernodes; ++s) forward(s, below_[0].data(), nullptr);
   // L^T z = y: the chain first, then the parts, which read its rows only.
   for (Index s = supernodes - 1; s >= top_first_supernode_; --s) backward(s, below_[0].data());
-#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1)
+#pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1) if (parallel)
   for (int p = 0; p < 2; ++p)
     failure.run([&] {
       for (const auto& [begin, end] : parts_[p])

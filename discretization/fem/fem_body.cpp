@@ -342,7 +342,7 @@ void FemBody::share_cells(RankShare share) {
     std::tie(cell_begin_, cell_end_) = std::pair<Index, Index>(0, piece_->own_cells);
     owned_nodes_ = {0, piece_->own_nodes};
   }
-  schedule_ = schedule_cells(mesh_, omp_get_max_threads(), cell_begin_, cell_end_);
+  schedule_ = schedule_cells_worth_threads(mesh_, cell_begin_, cell_end_);
   // Its own nodes (their rows take the whole lumped mass) and its cells'.
   std::vector<char> reached(mesh_.node_count(), 0);
   for (Index c = cell_begin_; c < cell_end_; ++c)
@@ -383,7 +383,7 @@ void FemBody::element_loop(const Vector& u, const BulkAverages* averages, const 
   ParallelFailure failure;  // a material law or the sink may throw
   // Phase by phase: the ranges of one phase share no node, so their forces and
   // blocks are written without atomics.
-#pragma omp parallel reduction(+ : total_energy)
+#pragma omp parallel reduction(+ : total_energy) if (schedule_.threads > 1)
   {
     Work work;
     Mat3 P;

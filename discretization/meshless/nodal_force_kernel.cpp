@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include "core/threads_worth_waking.h"
+
 namespace kerf {
 namespace {
 
@@ -156,7 +158,7 @@ void nodal_force_3d(const NodalForceTables& t, const MaterialLaw& law, const Vec
   // Sized here, not inside the region: an allocation failure must not be thrown in it.
   const std::size_t stride = 4 * static_cast<std::size_t>(N);
   scratch.forces4.resize(omp_get_max_threads() * stride + 4);
-#pragma omp parallel
+#pragma omp parallel if (worth_threads(count))
   {
     const int thread = omp_get_thread_num(), threads = omp_get_num_threads();
     double* all = const_cast<double*>(aligned_32(scratch.forces4));

@@ -8,6 +8,7 @@
 
 #include <set>
 
+#include "core/threads_worth_waking.h"
 #include "geometry/box_mesher.h"
 #include "geometry/cell_coloring.h"
 #include "geometry/cell_schedule.h"
@@ -141,6 +142,36 @@ TEST(Geometry, CellScheduleOfARangeCoversThatRangeOnly) {
   EXPECT_FALSE(many.banded);
   expect_conflict_free_cover(mesh, many, begin, end);
   expect_conflict_free_cover(mesh, schedule_cells(mesh, 1, begin, end), begin, end);
+}
+
+// Threads sleep when they wait: a phase whose share a thread is small runs on
+// one thread (core/threads_worth_waking.h), every cell still covered once.
+TEST(Geometry, CellScheduleTakesOneThreadWhereAThreadsShareIsTooSmallToWakeIt) {
+  const int kept = omp_get_max_threads();
+  omp_set_num_threads(2);
+  Mesh small = testing::unit_box_mesh(3, 1, 0.25);  // a few hundred cells
+  order_for_locality(small);
+  ASSERT_LT(small.cell_count(), 2 * items_worth_a_thread);
+  const CellSchedule one = schedule_cells_worth_threads(small, 0, small.cell_count());
+  EXPECT_EQ(one.threads, 1);
+  EXPECT_EQ(one.phases.size(), 1u);
+  expect_conflict_free_cover(small, one);
+  Mesh large = testing::unit_box_mesh(3, 1, 0.08);  // banded: two phases of a chunk a thread
+  order_for_locality(large);
+  const CellSchedule two = schedule_cells_worth_threads(large, 0, large.cell_count());
+  ASSERT_TRUE(two.banded) << large.cell_count() << " cells";
+  EXPECT_EQ(two.threads, 2);
+  expect_conflict_free_cover(large, two);
+  // Coloured, the same cells make phases too thin a thread: one thread.
+  Mesh shuffled = testing::unit_box_mesh(3, 1, 0.08);
+  const CellSchedule coloured = schedule_cells(shuffled, 2);
+  ASSERT_FALSE(coloured.banded);
+  const Index share = shuffled.cell_count() / (2 * static_cast<Index>(coloured.phases.size()));
+  ASSERT_LT(share, items_worth_a_thread) << coloured.phases.size() << " colours";
+  const CellSchedule thin = schedule_cells_worth_threads(shuffled, 0, shuffled.cell_count());
+  EXPECT_EQ(thin.threads, 1);
+  expect_conflict_free_cover(shuffled, thin);
+  omp_set_num_threads(kept);
 }
 
 TEST(Geometry, LocalityOrderingKeepsTheMeshAndNarrowsTheBandwidth) {
