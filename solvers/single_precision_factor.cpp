@@ -145,8 +145,7 @@ void SinglePrecisionFactor::solve(const Vector& b, Vector& x) const {
   // top chain's rows into its own share; then the shares, then the chain. The
   // same sums in the same order on one thread or two: the same answer.
   ParallelFailure failure;  // Eigen's products (float_kernels.h) may allocate a temporary: nothing may leave a region
-  // An item of worth_threads a kibi-entry of the factor: about 0.6 us of a solve on one thread, as a cell's forces.
-  const bool parallel = worth_threads(static_cast<Index>(values_.size() / 1024));
+  const bool parallel = worth_threads(static_cast<Index>(values_.size() / 384));  // an item: 384 entries
 #pragma omp parallel for num_threads(std::min(2, omp_get_max_threads())) schedule(static, 1) if (parallel)
   for (int p = 0; p < 2; ++p)
     failure.run([&] {

@@ -58,8 +58,7 @@ class FreeDofs {
     double* out = restricted_.valuePtr();
     const Index* source = source_position_.data();
     const std::ptrdiff_t count = static_cast<std::ptrdiff_t>(source_position_.size());
-    // An item of worth_threads 256 values: about as long as a cell's forces.
-#pragma omp parallel for schedule(static) if (worth_threads(static_cast<Index>(count / 256)))
+#pragma omp parallel for schedule(static) if (worth_threads(static_cast<Index>(count / 512)))  // an item: 512 values
     for (std::ptrdiff_t k = 0; k < count; ++k) out[k] = value_of(source[k]);
   }
   /// Adds scale * diagonal[d] to the restricted matrix's diagonal at each free dof d.
